@@ -1,0 +1,39 @@
+// Copyright (c) 2026 The CGAL Spherical_parameterization authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_DIRICHLET_ENERGY_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_DIRICHLET_ENERGY_H
+
+#include <CGAL/Spherical_parameterization/Chord_triangle.h>
+#include <CGAL/Spherical_parameterization/Reference_triangle.h>
+
+#include <array>
+#include <cmath>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+
+/// \ingroup PkgSphericalParameterizationEnergies
+/// The cotangent (Dirichlet) energy of Pinkall and Polthier,
+/// `(cot A |b-c|^2 + cot B |c-a|^2 + cot C |a-b|^2) / 2`, with the input angles clamped to
+/// `[5, 85]` degrees as in Friedel et al., Section 3, so that no weight is negative.
+/// \cgalModels `SphericalEnergy`
+struct Dirichlet_energy
+{
+  double min_angle = 5 * M_PI / 180;   ///< lower clamp of the input angles, radians
+  double max_angle = 85 * M_PI / 180;  ///< upper clamp of the input angles, radians
+
+  using Face_data = std::array<double, 3>;  // half cotangent weight of each edge
+  Face_data face_data(const Reference_triangle& r) const { return r.half_cotangents(min_angle, max_angle); }
+
+  template <class Number>
+  Number flat_energy(const Chord_triangle<Number>& t, const Face_data& w) const
+  {
+    return t.spring(w);
+  }
+};
+
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_DIRICHLET_ENERGY_H

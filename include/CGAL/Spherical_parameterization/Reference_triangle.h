@@ -1,0 +1,62 @@
+// Copyright (c) 2026 The CGAL Spherical_parameterization authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_REFERENCE_TRIANGLE_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_REFERENCE_TRIANGLE_H
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+
+/// \ingroup PkgSphericalParameterizationEnergies
+/// An input triangle, after the whole mesh has been scaled to the sphere's area `4 pi`.
+/// Energies read their weights and areas from it (never from the sphere points).
+struct Reference_triangle
+{
+  std::array<Eigen::Vector3d, 3> points;
+  double area = 0;
+  std::array<double, 3> angles{0, 0, 0};  ///< interior angle at each vertex, in radians
+
+  Reference_triangle() = default;
+  Reference_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r)
+    : points{p, q, r}
+  {
+    area = 0.5 * (q - p).cross(r - p).norm();
+    for(int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d u = points[(i + 1) % 3] - points[i], v = points[(i + 2) % 3] - points[i];
+      angles[i] = std::atan2(u.cross(v).norm(), u.dot(v));
+    }
+  }
+
+  /// `cot(angle_i) / 2` for edge `i` (opposite vertex `i`), the angle first clamped to
+  /// `[min_angle, max_angle]`: the paper clamps to [5, 85] degrees so no weight is negative.
+  std::array<double, 3> half_cotangents(double min_angle, double max_angle) const
+  {
+    std::array<double, 3> w;
+    for(int i = 0; i < 3; ++i)
+      w[i] = 0.5 / std::tan(std::clamp(angles[i], min_angle, max_angle));
+    return w;
+  }
+
+  /// Exact `cot(angle_i) / 2`: `sum_i w_i |e_i|^2 = area * |J|_F^2` for the affine map `J`
+  /// from this triangle to any other, non-negative whatever the angles.
+  std::array<double, 3> exact_half_cotangents() const
+  {
+    std::array<double, 3> w;
+    for(int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d u = points[(i + 1) % 3] - points[i], v = points[(i + 2) % 3] - points[i];
+      w[i] = 0.5 * u.dot(v) / u.cross(v).norm();
+    }
+    return w;
+  }
+};
+
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_REFERENCE_TRIANGLE_H

@@ -1,0 +1,75 @@
+// Copyright (c) 2026 The CGAL Spherical_parameterization authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_SPARSE_SOLVER_TRAITS_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_SPARSE_SOLVER_TRAITS_H
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
+
+namespace CGAL {
+namespace Spherical_parameterization {
+
+/// \ingroup PkgSphericalParameterizationRef
+/// Sparse symmetric solver of the Newton systems with Eigen's `SimplicialLDLT`.
+/// Only the lower triangle of the matrix is read. The pattern is analysed once.
+/// \cgalModels `SphericalSparseSolverTraits`
+class Eigen_sparse_LDLT_traits
+{
+public:
+  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+  using Vector = Eigen::VectorXd;
+
+  void analyze_pattern(const Matrix& m) { solver_.analyzePattern(m); }
+
+  /// Factors `m`; true if and only if `m` is positive definite.
+  bool factorize(const Matrix& m)
+  {
+    solver_.factorize(m);
+    return solver_.info() == Eigen::Success && solver_.vectorD().minCoeff() > 0 && solver_.vectorD().allFinite();
+  }
+
+  Vector solve(const Vector& b) const { return solver_.solve(b); }
+
+private:
+  Eigen::SimplicialLDLT<Matrix, Eigen::Lower> solver_;
+};
+
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
+/// \ingroup PkgSphericalParameterizationRef
+/// The same with CHOLMOD's supernodal Cholesky factorization (SuiteSparse), about twice as
+/// fast on large meshes. Available when `CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD` is defined.
+/// \cgalModels `SphericalSparseSolverTraits`
+class Cholmod_traits
+{
+public:
+  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+  using Vector = Eigen::VectorXd;
+
+  Cholmod_traits() { solver_.cholmod().print = 0; }  // an indefinite matrix is expected, not an error to print
+
+  void analyze_pattern(const Matrix& m) { solver_.analyzePattern(m); }
+  bool factorize(const Matrix& m)
+  {
+    solver_.factorize(m);
+    return solver_.info() == Eigen::Success;
+  }
+  Vector solve(const Vector& b) const { return solver_.solve(b); }
+
+private:
+  Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower> solver_;
+};
+
+/// The solver used when none is named: CHOLMOD when available, else Eigen.
+using Default_sparse_solver_traits = Cholmod_traits;
+#else
+using Default_sparse_solver_traits = Eigen_sparse_LDLT_traits;
+#endif
+
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_SPARSE_SOLVER_TRAITS_H

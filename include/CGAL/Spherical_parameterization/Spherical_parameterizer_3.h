@@ -1,0 +1,349 @@
+// Copyright (c) 2026 The CGAL Spherical_parameterization authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_SPHERICAL_PARAMETERIZER_3_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_SPHERICAL_PARAMETERIZER_3_H
+
+#include <CGAL/Spherical_parameterization/Energy_mix.h>
+#include <CGAL/Spherical_parameterization/Error_code.h>
+#include <CGAL/Spherical_parameterization/Progress.h>
+#include <CGAL/Spherical_parameterization/Result.h>
+#include <CGAL/Spherical_parameterization/Sparse_solver_traits.h>
+#include <CGAL/Spherical_parameterization/Weighted_sum_energy.h>
+#include <CGAL/Spherical_parameterization/named_parameters.h>
+#include <CGAL/Spherical_parameterization/internal/Fold_barrier.h>
+#include <CGAL/Spherical_parameterization/internal/Newton_solver.h>
+#include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
+#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/Untangling_energy.h>
+#include <CGAL/Spherical_parameterization/internal/check_input.h>
+#include <CGAL/Spherical_parameterization/internal/initialization.h>
+#include <CGAL/Spherical_parameterization/internal/map_validity.h>
+
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/property_map.h>
+#include <CGAL/tags.h>
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+
+/// \ingroup PkgSphericalParameterizationRef
+/// Maps a closed, connected, genus-0 triangle mesh one-to-one onto the unit sphere by
+/// minimizing `sum_f d_min(f)^-2 E_flat(f)` (Friedel, Schroeder and Desbrun 2007) over the
+/// sphere points, with no vertex fixed.
+///
+/// `precompute()` checks the input and builds what depends on the mesh only (reference
+/// triangles, the sparsity pattern and its symbolic factorization); `solve()` runs the
+/// pipeline and writes the map. `solve()` can be called again, for instance after changing
+/// the weights through `energy()`: without an `initial_sphere_map` it then starts from the
+/// last map.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph`
+/// \tparam Energy a model of `SphericalEnergy`, by default `Combined_energy`
+/// \tparam SolverTraits a model of `SphericalSparseSolverTraits`, by default CHOLMOD when
+///         available, else Eigen's `SimplicialLDLT`
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` or `CGAL::Parallel_tag` (needs TBB)
+template <class TriangleMesh,
+          class Energy = Combined_energy,
+          class SolverTraits = Default_sparse_solver_traits,
+          class ConcurrencyTag = CGAL::Sequential_tag>
+class Spherical_parameterizer_3
+{
+  using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
+  using Newton = internal::Newton_solver<SolverTraits, ConcurrencyTag>;
+
+public:
+  explicit Spherical_parameterizer_3(const Energy& energy = default_energy()) : energy_(energy) {}
+
+  /// The energy; change its weights between two solves.
+  Energy& energy() { return energy_; }
+  const Energy& energy() const { return energy_; }
+
+  /// Checks the mesh and precomputes what depends on it only.
+  /// \cgalNamedParamsBegin
+  ///   \cgalParamNBegin{vertex_point_map} the input positions;
+  ///     default `get(CGAL::vertex_point, tm)` \cgalParamNEnd
+  /// \cgalNamedParamsEnd
+  /// \return `Error_code::OK` or the input error; the reason is in `input_detail()`.
+  template <class NamedParameters = parameters::Default_named_parameters>
+  Error_code precompute(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values())
+  {
+    using CGAL::parameters::choose_parameter;
+    using CGAL::parameters::get_parameter;
+    const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                                      get_const_property_map(CGAL::vertex_point, tm));
+    solver_.reset();
+    last_map_.clear();
+    const internal::Input_report report = internal::check_input(tm, vpm);
+    input_detail_ = report.detail;
+    if(report.code != Error_code::OK)
+      return report.code;
+
+    vertices_.assign(vertices(tm).begin(), vertices(tm).end());
+    std::unordered_map<vertex_descriptor, int> index;
+    internal::Points points;
+    for(vertex_descriptor v : vertices_) {
+      index.emplace(v, int(points.size()));
+      const auto& p = get(vpm, v);
+      points.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+    }
+    internal::Faces faces;
+    for(auto f : CGAL::faces(tm)) {
+      std::array<int, 3> t;
+      int k = 0;
+      for(vertex_descriptor v : vertices_around_face(halfedge(f, tm), tm))
+        t[k++] = index.at(v);
+      faces.push_back(t);
+    }
+    soup_ = internal::make_triangle_soup(std::move(points), std::move(faces));
+    solver_ = std::make_unique<Newton>(soup_.faces, soup_.number_of_vertices());
+    return Error_code::OK;
+  }
+
+  /// Where the input is bad, after `precompute()` returned an error.
+  const std::string& input_detail() const { return input_detail_; }
+
+  /// Computes the map and writes it to `sphere_map` (a writable property map
+  /// `vertex -> Point_3`; it may be the mesh's own point map). The map is written whenever
+  /// the solver ran; check `Result::is_valid()`.
+  /// \cgalNamedParamsBegin
+  ///   \cgalParamNBegin{pipeline} `Pipeline::ROBUST` (default) or `Pipeline::PAPER` \cgalParamNEnd
+  ///   \cgalParamNBegin{initial_sphere_map} a start on the sphere; default: the pipeline's \cgalParamNEnd
+  ///   \cgalParamNBegin{d_min_correction} default `true` \cgalParamNEnd
+  ///   \cgalParamNBegin{number_of_iterations} cap on Newton iterations per stage; default 200 \cgalParamNEnd
+  ///   \cgalParamNBegin{tolerance} relative energy decrease at which to stop; default 1e-8 \cgalParamNEnd
+  ///   \cgalParamNBegin{maximum_running_time} seconds; default unlimited \cgalParamNEnd
+  ///   \cgalParamNBegin{visitor} called after each iteration with a `Progress`; returns
+  ///     `false` to cancel \cgalParamNEnd
+  /// \cgalNamedParamsEnd
+  template <class SphereMap, class NamedParameters = parameters::Default_named_parameters>
+  Result solve(SphereMap sphere_map, const NamedParameters& np = parameters::default_values())
+  {
+    using CGAL::parameters::choose_parameter;
+    using CGAL::parameters::get_parameter;
+    Result result;
+    if(!solver_) {
+      result.status = Error_code::EMPTY_MESH;
+      result.detail = "precompute() was not called or failed";
+      return result;
+    }
+    Run run;
+    run.options.start = internal::Clock::now();
+    const double max_seconds = choose_parameter(get_parameter(np, CGAL::internal_np::maximum_running_time), 0.0);
+    if(max_seconds > 0)
+      run.options.deadline = run.options.start + std::chrono::duration_cast<internal::Clock::duration>(
+                                                   std::chrono::duration<double>(max_seconds));
+    run.options.max_iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 200);
+    run.options.tolerance = choose_parameter(get_parameter(np, internal_np::tolerance_t()), 1e-8);
+    run.correction = choose_parameter(get_parameter(np, internal_np::d_min_correction_t()), true);
+    run.pipeline = choose_parameter(get_parameter(np, internal_np::pipeline_t()), Pipeline::ROBUST);
+    if(!(run.options.tolerance >= 0) || run.options.max_iterations == 0 || !(max_seconds >= 0)) {
+      result.status = Error_code::INVALID_PARAMETER;
+      result.detail = "tolerance, number_of_iterations and maximum_running_time must be positive";
+      return result;
+    }
+
+    internal::Points x;
+    if(!initial_map(np, run, x, result))
+      return result;
+    auto visitor = choose_parameter(get_parameter(np, CGAL::internal_np::visitor), Default_visitor());
+    run_pipeline(run, x, visitor);
+    finish(run, x, result);
+    write_map(sphere_map, x);
+    last_map_ = x;
+    result.time_seconds = std::chrono::duration<double>(internal::Clock::now() - run.options.start).count();
+    return result;
+  }
+
+private:
+  struct Run
+  {
+    internal::Newton_options options;
+    bool correction = true;
+    Pipeline pipeline = Pipeline::ROBUST;
+    std::size_t iterations = 0;
+    std::optional<internal::Newton_stop> interrupted;  // cancelled or out of time
+    std::optional<internal::Points> best_valid;         // last fold-free map met, for interruptions
+    std::string stages;
+  };
+
+  static Energy default_energy()
+  {
+    if constexpr(std::is_same<Energy, Combined_energy>::value) return combined_energy(1, 1);
+    else if constexpr(std::is_same<Energy, Energy_mix>::value) return *energy_by_name("combined");
+    else return Energy();
+  }
+
+  // The start: the user's map, the last map (re-solve), or the central projection.
+  template <class NamedParameters>
+  bool initial_map(const NamedParameters& np, Run& run, internal::Points& x, Result& result)
+  {
+    using CGAL::parameters::get_parameter;
+    const auto user_map = get_parameter(np, internal_np::initial_sphere_map_t());
+    if constexpr(!std::is_same<std::decay_t<decltype(user_map)>, CGAL::internal_np::Param_not_found>::value) {
+      x.clear();
+      for(vertex_descriptor v : vertices_) {
+        const auto& p = get(user_map, v);
+        x.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+        if(!x.back().allFinite() || !(x.back().norm() > 0)) {
+          result.status = Error_code::INVALID_INITIALIZATION;
+          result.detail = "a point of the initial map is zero or not finite";
+          return false;
+        }
+        x.back().normalize();
+      }
+    } else if(!last_map_.empty()) {
+      x = last_map_;
+    } else {
+      std::optional<Eigen::Vector3d> center = Eigen::Vector3d::Zero();  // the area centroid
+      if(run.pipeline == Pipeline::ROBUST)
+        center = internal::interior_center(soup_);
+      std::optional<internal::Points> start;
+      if(center)
+        start = internal::central_projection(soup_.points, *center);
+      if(!start) {
+        result.status = Error_code::INVALID_INITIALIZATION;
+        result.detail = "no centre for the central projection";
+        return false;
+      }
+      x = std::move(*start);
+    }
+    const double degree = internal::check_map(soup_.faces, x).degree;
+    if(std::abs(degree - 1) > 1e-6 && run.pipeline == Pipeline::ROBUST) {
+      result.status = Error_code::INVALID_INITIALIZATION;
+      result.detail = "the initial map has degree " + std::to_string(degree) + ", not 1";
+      return false;
+    }
+    return true;
+  }
+
+  template <class Visitor>
+  void run_pipeline(Run& run, internal::Points& x, Visitor& visitor)
+  {
+    if(run.pipeline == Pipeline::PAPER) {
+      minimize(energy_, "target", false, run, x, visitor);
+      return;
+    }
+    // Tutte with the d_min barrier first: robust, and fold-free on most meshes.
+    if(internal::count_bad_faces(soup_.faces, x) > 0 && !minimize(Tutte_energy(), "tutte", false, run, x, visitor))
+      return;
+    if(internal::count_bad_faces(soup_.faces, x) > 0 && !untangle(run, x, visitor))
+      return;
+    if(internal::count_bad_faces(soup_.faces, x) > 0) {
+      minimize(energy_, "target", false, run, x, visitor);  // no fold-free map found: plain minimization
+      return;
+    }
+    run.best_valid = x;
+    // The user's energy, with a barrier on the few faces squeezed below the activation
+    // area ratio, and steps that never cross det = 0.
+    const Weighted_sum<Energy, internal::Fold_barrier> guarded({1.0, 1.0}, energy_, internal::Fold_barrier());
+    minimize(guarded, "target", true, run, x, visitor);
+  }
+
+  // Garanzha et al.'s continuation: unfold with a finite energy, then tighten the barrier.
+  template <class Visitor>
+  bool untangle(Run& run, internal::Points& x, Visitor& visitor)
+  {
+    internal::Untangling_energy untangling;
+    for(int round = 0; round < 12; ++round) {
+      if(!minimize(untangling, "untangle", false, run, x, visitor))
+        return false;
+      if(internal::count_bad_faces(soup_.faces, x) == 0)
+        return true;
+      untangling.epsilon /= 10;
+    }
+    return true;
+  }
+
+  // One Newton stage; false if the run was interrupted.
+  template <class StageEnergy, class Visitor>
+  bool minimize(const StageEnergy& energy, const char* stage, bool keep_fold_free, Run& run,
+                internal::Points& x, Visitor& visitor)
+  {
+    const internal::Spherical_energy<StageEnergy> spherical(soup_, energy, run.correction);
+    run.options.stage = stage;
+    run.options.keep_fold_free = keep_fold_free;
+    run.options.iteration_offset = run.iterations;
+    const internal::Newton_outcome out = solver_->minimize(spherical, x, run.options, visitor);
+    run.iterations += out.iterations;
+    run.stages += std::string(run.stages.empty() ? "" : " ") + stage + ":" + std::to_string(out.iterations);
+    last_stop_ = out.stop;
+    last_energy_ = out.energy;
+    if(out.stop == internal::Newton_stop::CANCELLED || out.stop == internal::Newton_stop::TIME_LIMIT) {
+      run.interrupted = out.stop;
+      return false;
+    }
+    return true;
+  }
+
+  void finish(Run& run, internal::Points& x, Result& result)
+  {
+    internal::Map_validity validity = internal::check_map(soup_.faces, x);
+    if(run.interrupted && !validity.is_valid() && run.best_valid) {
+      x = *run.best_valid;  // an interruption returns the last valid map met
+      validity = internal::check_map(soup_.faces, x);
+    }
+    result.valid = validity.is_valid();
+    result.iterations = run.iterations;
+    result.energy = last_energy_;
+    result.flipped = validity.flipped;
+    result.degenerate = validity.degenerate;
+    result.degree = validity.degree;  // the soup's faces carry the input's orientation outward
+    result.inward_oriented = soup_.inward;
+    result.min_area_ratio = min_area_ratio(x);
+    result.stages = run.stages;
+    if(run.interrupted)
+      result.status = *run.interrupted == internal::Newton_stop::CANCELLED ? Error_code::CANCELLED : Error_code::TIME_LIMIT;
+    else if(!result.valid)
+      result.status = Error_code::NO_VALID_MAP;
+    else if(last_stop_ == internal::Newton_stop::ITERATION_CAP)
+      result.status = Error_code::NOT_CONVERGED;
+    else
+      result.status = Error_code::OK;
+    if(!result.valid)
+      result.detail = std::to_string(validity.flipped) + " flipped and " + std::to_string(validity.degenerate) +
+                      " degenerate faces, degree " + std::to_string(result.degree);
+  }
+
+  // min over faces of (spherical area / 4 pi) / (input area / total input area)
+  double min_area_ratio(const internal::Points& x) const
+  {
+    double smallest = std::numeric_limits<double>::infinity();
+    for(std::size_t f = 0; f < soup_.faces.size(); ++f) {
+      const auto& t = soup_.faces[f];
+      const double sphere = internal::signed_spherical_area(x[t[0]], x[t[1]], x[t[2]]);
+      smallest = std::min(smallest, sphere / soup_.face_area(f));  // both totals are 4 pi
+    }
+    return smallest;
+  }
+
+  template <class SphereMap>
+  void write_map(SphereMap sphere_map, const internal::Points& x) const
+  {
+    using Point = typename boost::property_traits<SphereMap>::value_type;
+    for(std::size_t i = 0; i < vertices_.size(); ++i)
+      put(sphere_map, vertices_[i], Point(x[i].x(), x[i].y(), x[i].z()));
+  }
+
+  Energy energy_;
+  internal::Triangle_soup soup_;
+  std::vector<vertex_descriptor> vertices_;
+  std::unique_ptr<Newton> solver_;
+  internal::Points last_map_;
+  std::string input_detail_;
+  internal::Newton_stop last_stop_ = internal::Newton_stop::CONVERGED;
+  double last_energy_ = 0;
+};
+
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_SPHERICAL_PARAMETERIZER_3_H

@@ -1,0 +1,75 @@
+// Copyright (c) 2026 The CGAL Spherical_parameterization authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERICAL_ENERGY_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERICAL_ENERGY_H
+
+#include <CGAL/Spherical_parameterization/Chord_triangle.h>
+#include <CGAL/Spherical_parameterization/Reference_triangle.h>
+#include <CGAL/Spherical_parameterization/d_min_correction.h>
+#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+/// The energy of a sphere map: `sum_f d_min(f)^-2 * E_flat(f)` (Friedel et al., Section 1),
+/// or the plain flat sum when the correction is off. The per-face constants of the energy
+/// policy are computed once from the reference triangles.
+template <class Energy>
+class Spherical_energy
+{
+public:
+  Spherical_energy(const Triangle_soup& soup, const Energy& energy, bool d_min_correction = true)
+    : faces_(&soup.faces), energy_(energy), correction_(d_min_correction)
+  {
+    data_.reserve(soup.faces.size());
+    for(const auto& t : soup.faces)
+      data_.push_back(energy_.face_data(Reference_triangle(soup.points[t[0]], soup.points[t[1]], soup.points[t[2]])));
+  }
+
+  std::size_t number_of_faces() const { return faces_->size(); }
+  const Faces& faces() const { return *faces_; }
+
+  /// The energy of face `f`, as a `double` or as a `Triangle_jet` with derivatives.
+  /// Its value is not finite, or infinite, once the chord triangle reaches a hemisphere.
+  template <class Number>
+  Number face(std::size_t f, const Points& x) const
+  {
+    const auto& t = (*faces_)[f];
+    const Chord_triangle<Number> chord(x[t[0]], x[t[1]], x[t[2]]);
+    Number e = energy_.flat_energy(chord, data_[f]);
+    if(!correction_)
+      return e;
+    return e * inverse_squared_d_min(chord);
+  }
+
+  /// The total energy, `+inf` if any face is past the barrier or not finite.
+  double value(const Points& x) const
+  {
+    double sum = 0;
+    for(std::size_t f = 0; f < data_.size(); ++f) {
+      const double e = face<double>(f, x);
+      if(!std::isfinite(e))
+        return std::numeric_limits<double>::infinity();
+      sum += e;
+    }
+    return sum;
+  }
+
+private:
+  const Faces* faces_;
+  Energy energy_;
+  bool correction_;
+  std::vector<typename Energy::Face_data> data_;
+};
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERICAL_ENERGY_H

@@ -1,0 +1,74 @@
+// Copyright (c) 2026 The CGAL Spherical_parameterization authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TRIANGLE_SOUP_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TRIANGLE_SOUP_H
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+using Points = std::vector<Eigen::Vector3d>;
+using Faces = std::vector<std::array<int, 3>>;
+
+/// The input mesh as arrays, the form the solver works on. Faces are oriented outward
+/// (the input's inward-oriented faces are reversed and `inward` remembers it) and the
+/// points are centred at the area centroid and scaled to total area `4 pi`, so that energies
+/// mixing lengths and areas do not depend on the model's size.
+struct Triangle_soup
+{
+  Points points;
+  Faces faces;
+  bool inward = false;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< of the input, before scaling
+  double scale = 1;                                    ///< input length * scale = soup length
+
+  std::size_t number_of_vertices() const { return points.size(); }
+  std::size_t number_of_faces() const { return faces.size(); }
+
+  double face_area(std::size_t f) const
+  {
+    const auto& t = faces[f];
+    return 0.5 * (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm();
+  }
+};
+
+/// Builds the soup from input points and faces as the user oriented them.
+inline Triangle_soup make_triangle_soup(Points points, Faces faces)
+{
+  Triangle_soup soup;
+  double area = 0;
+  Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+  for(const auto& t : faces) {
+    const double a = 0.5 * (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm();
+    area += a;
+    weighted += a * (points[t[0]] + points[t[1]] + points[t[2]]) / 3;
+  }
+  soup.centroid = weighted / area;
+  soup.scale = std::sqrt(4 * M_PI / area);
+  for(auto& p : points)
+    p = (p - soup.centroid) * soup.scale;
+
+  double volume = 0;  // six times the signed volume enclosed by the faces
+  for(const auto& t : faces)
+    volume += points[t[0]].dot(points[t[1]].cross(points[t[2]]));
+  soup.inward = volume < 0;
+  if(soup.inward)
+    for(auto& t : faces)
+      std::swap(t[1], t[2]);
+  soup.points = std::move(points);
+  soup.faces = std::move(faces);
+  return soup;
+}
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TRIANGLE_SOUP_H

@@ -1,0 +1,77 @@
+// Copyright (c) 2026 The CGAL Spherical_parameterization authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MAP_VALIDITY_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MAP_VALIDITY_H
+
+#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+
+#include <cmath>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+/// `|det(a, b, c)|` below this makes a face degenerate (the validity contract of the package).
+constexpr double degenerate_determinant = 1e-14;
+
+/// Signed area of the spherical triangle (a, b, c) (Van Oosterom and Strackee 1983):
+/// `tan(E / 2) = det(a, b, c) / (1 + a.b + b.c + c.a)`.
+inline double signed_spherical_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
+{
+  const double det = a.dot((b - a).cross(c - a));
+  return 2 * std::atan2(det, 1 + a.dot(b) + b.dot(c) + c.dot(a));
+}
+
+/// What makes a sphere map valid: every face positively oriented and the degree 1.
+struct Map_validity
+{
+  std::size_t flipped = 0;     ///< faces with det < -1e-14
+  std::size_t degenerate = 0;  ///< faces with |det| <= 1e-14
+  double degree = 0;           ///< sum of signed spherical areas / 4 pi
+  double max_norm_error = 0;   ///< max | |x| - 1 |
+  bool finite = true;
+
+  bool is_valid() const
+  {
+    return finite && flipped == 0 && degenerate == 0 && std::abs(degree - 1) < 1e-6 && max_norm_error <= 1e-12;
+  }
+};
+
+/// Checks the map `x` of the soup (faces oriented outward).
+inline Map_validity check_map(const Faces& faces, const Points& x)
+{
+  Map_validity v;
+  for(const auto& p : x) {
+    if(!p.allFinite()) { v.finite = false; continue; }
+    v.max_norm_error = std::max(v.max_norm_error, std::abs(p.norm() - 1));
+  }
+  double area = 0;
+  for(const auto& t : faces) {
+    const Eigen::Vector3d &a = x[t[0]], &b = x[t[1]], &c = x[t[2]];
+    const double det = a.dot((b - a).cross(c - a));
+    if(!std::isfinite(det)) { v.finite = false; continue; }
+    if(std::abs(det) <= degenerate_determinant) ++v.degenerate;
+    else if(det < 0) ++v.flipped;
+    area += signed_spherical_area(a, b, c);
+  }
+  v.degree = area / (4 * M_PI);
+  return v;
+}
+
+/// The number of faces that are flipped or degenerate: 0 for a fold-free map.
+inline std::size_t count_bad_faces(const Faces& faces, const Points& x)
+{
+  std::size_t bad = 0;
+  for(const auto& t : faces) {
+    const double det = x[t[0]].dot((x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]));
+    if(!(det > degenerate_determinant)) ++bad;
+  }
+  return bad;
+}
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MAP_VALIDITY_H
