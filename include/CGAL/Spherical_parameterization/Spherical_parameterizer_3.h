@@ -233,7 +233,7 @@ private:
       return;
     }
     // Tutte with the d_min barrier first: robust, and fold-free on most meshes.
-    if(internal::count_bad_faces(soup_.faces, x) > 0 && !minimize(Tutte_energy(), "tutte", false, run, x, visitor))
+    if(internal::count_bad_faces(soup_.faces, x) > 0 && !minimize(Tutte_energy(), "tutte", false, run, x, visitor, true))
       return;
     if(internal::count_bad_faces(soup_.faces, x) > 0 && !untangle(run, x, visitor))
       return;
@@ -254,7 +254,7 @@ private:
   {
     internal::Untangling_energy untangling;
     for(int round = 0; round < 12; ++round) {
-      if(!minimize(untangling, "untangle", false, run, x, visitor))
+      if(!minimize(untangling, "untangle", false, run, x, visitor, true))
         return false;
       if(internal::count_bad_faces(soup_.faces, x) == 0)
         return true;
@@ -266,8 +266,9 @@ private:
   // One Newton stage; false if the run was interrupted.
   template <class StageEnergy, class Visitor>
   bool minimize(const StageEnergy& energy, const char* stage, bool keep_fold_free, Run& run,
-                internal::Points& x, Visitor& visitor)
+                internal::Points& x, Visitor& visitor, bool stop_when_fold_free = false)
   {
+    run.options.stop_when_fold_free = stop_when_fold_free;
     const internal::Spherical_energy<StageEnergy> spherical(soup_, energy, run.correction);
     run.options.stage = stage;
     run.options.keep_fold_free = keep_fold_free;

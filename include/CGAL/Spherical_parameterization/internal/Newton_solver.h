@@ -8,6 +8,7 @@
 #include <CGAL/Spherical_parameterization/Triangle_jet.h>
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/map_validity.h>
 #include <CGAL/Spherical_parameterization/internal/parallel_for.h>
 #include <CGAL/Spherical_parameterization/internal/project_psd.h>
 #include <CGAL/Spherical_parameterization/internal/step_bound.h>
@@ -35,6 +36,7 @@ struct Newton_options
   Clock::time_point start = Clock::now();
   Clock::time_point deadline = Clock::time_point::max();
   bool keep_fold_free = false;  ///< cap every step before a chord determinant reaches 0
+  bool stop_when_fold_free = false;  ///< a start-up stage: stop at the first fold-free map
   bool projected_hessian = false;  ///< project each face's Hessian to PSD instead of shifting the exact one
   const char* stage = "";
   std::size_t iteration_offset = 0;  ///< iterations of earlier stages, for progress reports
@@ -129,6 +131,7 @@ public:
       p.elapsed_seconds = std::chrono::duration<double>(Clock::now() - options.start).count();
       if(!visitor(p)) { out.stop = Newton_stop::CANCELLED; break; }
       if(decrease <= options.tolerance * std::abs(e) * 1e-2) { out.stop = Newton_stop::CONVERGED; break; }
+      if(options.stop_when_fold_free && count_bad_faces(*faces_, x) == 0) { out.stop = Newton_stop::CONVERGED; break; }
     }
     return out;
   }

@@ -1,0 +1,49 @@
+// Every closed genus-0 mesh of CGAL's data package from 2k to 35k faces gets a valid map with
+// the default settings, checked independently by measure_distortion.
+//   test_corpus MESH_DIR DATA_DIR NAME...
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/spherical_parameterize.h>
+#include <CGAL/Spherical_parameterization/measure_distortion.h>
+
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+namespace SP = CGAL::Spherical_parameterization;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+
+int main(int argc, char** argv)
+{
+  if(argc < 4) {
+    std::cerr << "usage: test_corpus MESH_DIR DATA_DIR NAME...\n";
+    return 1;
+  }
+  int passed = 0, failed = 0, skipped = 0;
+  for(int i = 3; i < argc; ++i) {
+    const std::string name = argv[i];
+    const std::string path = std::string(argv[1]) + "/" + name + ".off";
+    Mesh mesh;
+    if(!std::filesystem::exists(path) || !CGAL::IO::read_polygon_mesh(path, mesh)) {
+      std::cout << "SKIP " << name << " (no " << path << ")\n";
+      ++skipped;
+      continue;
+    }
+    auto sphere = mesh.add_property_map<Mesh::Vertex_index, Kernel::Point_3>("v:sphere").first;
+    const SP::Result r = CGAL::spherical_parameterize(mesh, sphere);
+    const SP::Distortion_report d = SP::measure_distortion(mesh, sphere);
+    // The numerical floor: no face's area share below 1e-8 of its input share.
+    const bool ok = d.is_valid() && r.is_valid() && d.min_area_ratio > 1e-8;
+    std::cout << (ok ? "PASS " : "FAIL ") << name << "_is_valid_with_defaults: " << mesh.number_of_faces()
+              << " faces, " << r.message() << ", flipped " << d.flipped << ", degenerate " << d.degenerate
+              << ", degree " << d.degree << ", min area ratio " << d.min_area_ratio << ", mean |log area ratio| "
+              << d.log_area_ratio.mean << ", " << r.iterations << " iterations (" << r.stages << "), "
+              << r.time_seconds << " s\n";
+    (ok ? passed : failed)++;
+  }
+  std::cout << passed << " passed, " << failed << " failed, " << skipped << " skipped\n";
+  return failed == 0 ? 0 : 1;
+}
