@@ -95,15 +95,15 @@ public:
       const auto& p = get(vpm, v);
       points.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
     }
-    internal::Faces faces;
-    for(auto f : CGAL::faces(tm)) {
+    internal::Faces triangles;
+    for(auto f : faces(tm)) {
       std::array<int, 3> t;
       int k = 0;
       for(vertex_descriptor v : vertices_around_face(halfedge(f, tm), tm))
         t[k++] = index.at(v);
-      faces.push_back(t);
+      triangles.push_back(t);
     }
-    soup_ = internal::make_triangle_soup(std::move(points), std::move(faces));
+    soup_ = internal::make_triangle_soup(std::move(points), std::move(triangles));
     solver_ = std::make_unique<Newton>(soup_.faces, soup_.number_of_vertices());
     return Error_code::OK;
   }

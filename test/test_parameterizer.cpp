@@ -1,0 +1,741 @@
+// Copyright (c) 2026 The CGAL Spherical_parameterization authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Tests of the solver, spherical_parameterize() and Spherical_parameterizer_3, on CGAL
+// meshes. Every map is judged by measure_distortion() and by reading the points back, never
+// by the solver's own Result alone.
+// Usage: test_parameterizer [path/to/CGAL/data/meshes] [path/to/repository/data]
+// Tests whose files are missing print SKIP. Timings of each section go to stderr.
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+
+// After the mesh headers: Spherical_parameterizer_3::precompute() calls CGAL::faces(tm)
+// qualified, which only sees the overloads declared before it (see the report).
+#include <CGAL/spherical_parameterize.h>
+#include <CGAL/Spherical_parameterization/Spherical_parameterizer_3.h>
+#include <CGAL/Spherical_parameterization/measure_distortion.h>
+#include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
+#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+
+#include <boost/property_map/property_map.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace SP = CGAL::Spherical_parameterization;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel Epick;
+typedef CGAL::Simple_cartesian<double> Cartesian;
+typedef Epick::Point_3 Point;
+typedef CGAL::Surface_mesh<Point> Mesh;
+typedef CGAL::Surface_mesh<Cartesian::Point_3> Cartesian_mesh;
+typedef CGAL::Polyhedron_3<Epick> Polyhedron;
+typedef Mesh::Vertex_index Vertex;
+typedef Mesh::Property_map<Vertex, Point> Sphere_map;
+
+typedef std::vector<Eigen::Vector3d> Points;
+typedef std::vector<std::array<int, 3>> Triangles;
+
+// ---------------------------------------------------------------------------------------
+// Harness
+
+int passed = 0, failed = 0, skipped = 0;
+std::string meshes_dir, data_dir;
+
+void report(const std::string& name, bool ok, const std::string& why = std::string())
+{
+  std::cout << (ok ? "PASS " : "FAIL ") << name;
+  if(!ok && !why.empty())
+    std::cout << "  (" << why << ")";
+  std::cout << std::endl;
+  ++(ok ? passed : failed);
+}
+
+void skip(const std::string& name, const std::string& why)
+{
+  std::cout << "SKIP " << name << "  (" << why << ")" << std::endl;
+  ++skipped;
+}
+
+std::string str(double v)
+{
+  std::ostringstream s;
+  s.precision(4);
+  s << v;
+  return s.str();
+}
+
+struct Section_timer
+{
+  std::string name;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  explicit Section_timer(std::string n) : name(std::move(n)) {}
+  ~Section_timer()
+  {
+    std::cerr << "time " << name << ": "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s" << std::endl;
+  }
+};
+
+std::mt19937_64 rng(77);
+
+double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+
+Eigen::Vector3d random_unit_vector()
+{
+  std::normal_distribution<double> normal;
+  Eigen::Vector3d v(normal(rng), normal(rng), normal(rng));
+  return v.normalized();
+}
+
+Eigen::Matrix3d random_rotation()
+{
+  std::normal_distribution<double> normal;
+  Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
+  q.normalize();
+  return q.toRotationMatrix();
+}
+
+template <class P>
+Eigen::Vector3d to_eigen(const P& p)
+{
+  return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+}
+
+// ---------------------------------------------------------------------------------------
+// Meshes
+
+template <class TM>
+TM mesh_from_soup(const Points& points, const std::vector<std::vector<std::size_t>>& polygons)
+{
+  typedef typename boost::property_traits<typename boost::property_map<TM, CGAL::vertex_point_t>::type>::value_type P;
+  std::vector<P> pts;
+  for(const auto& p : points) pts.emplace_back(p.x(), p.y(), p.z());
+  TM tm;
+  PMP::polygon_soup_to_polygon_mesh(pts, polygons, tm);
+  return tm;
+}
+
+std::vector<std::vector<std::size_t>> polygons_of(const Triangles& triangles)
+{
+  std::vector<std::vector<std::size_t>> polygons;
+  for(const auto& t : triangles) polygons.push_back({std::size_t(t[0]), std::size_t(t[1]), std::size_t(t[2])});
+  return polygons;
+}
+
+/// The icosphere: the icosahedron subdivided `level` times (each triangle into four, new
+/// points pushed to the unit sphere), faces counterclockwise from outside. The first 12
+/// points are the icosahedron's, the next 30 those of level 1, and so on.
+void icosphere(int level, Points& points, Triangles& triangles)
+{
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  points = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+            {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  for(auto& p : points) p.normalize();
+  triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+               {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+               {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  for(auto& t : triangles)  // orient outward whatever the table says
+    if(points[t[0]].dot(points[t[1]].cross(points[t[2]])) < 0) std::swap(t[1], t[2]);
+  for(int l = 0; l < level; ++l) {
+    std::map<std::pair<int, int>, int> middle;
+    auto midpoint = [&](int a, int b) {
+      const std::pair<int, int> key(std::min(a, b), std::max(a, b));
+      auto it = middle.find(key);
+      if(it != middle.end()) return it->second;
+      points.push_back((points[a] + points[b]).normalized());
+      middle.emplace(key, int(points.size()) - 1);
+      return int(points.size()) - 1;
+    };
+    Triangles finer;
+    for(const auto& t : triangles) {
+      const int ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+      finer.push_back({t[0], ab, ca});
+      finer.push_back({t[1], bc, ab});
+      finer.push_back({t[2], ca, bc});
+      finer.push_back({ab, bc, ca});
+    }
+    triangles = finer;
+  }
+}
+
+/// A bumpy, elongated genus-0 surface: the level-3 icosphere with its radius modulated and
+/// stretched to (3, 1, 0.6). Star-shaped about the origin, so its central projection is valid.
+template <class TM>
+TM bumpy_mesh()
+{
+  Points points;
+  Triangles triangles;
+  icosphere(3, points, triangles);
+  for(auto& p : points) {
+    const double r = 1 + 0.25 * std::sin(3 * p.x()) * std::cos(2 * p.y()) + 0.1 * std::sin(5 * p.z());
+    p = Eigen::Vector3d(3 * r * p.x(), r * p.y(), 0.6 * r * p.z());
+  }
+  return mesh_from_soup<TM>(points, polygons_of(triangles));
+}
+
+bool read_mesh(const std::string& path, Mesh& mesh)
+{
+  return std::filesystem::exists(path) && CGAL::IO::read_polygon_mesh(path, mesh) && !is_empty(mesh);
+}
+
+// ---------------------------------------------------------------------------------------
+// Judging a map
+
+/// Max over vertices of | |x| - 1 |, read from the map itself.
+template <class TM, class SphereMap>
+double max_norm_error(const TM& tm, const SphereMap& map)
+{
+  double worst = 0;
+  for(auto v : vertices(tm)) {
+    const double n = to_eigen(get(map, v)).norm();
+    worst = std::max(worst, std::isfinite(n) ? std::abs(n - 1) : std::numeric_limits<double>::infinity());
+  }
+  return worst;
+}
+
+/// Checks that the written map is valid, by measure_distortion() and by the points
+/// themselves, and that the Result says the same. Returns the distortion report.
+template <class TM, class SphereMap, class NP = CGAL::parameters::Default_named_parameters>
+SP::Distortion_report check_valid_map(const std::string& name, const TM& tm, const SphereMap& map,
+                                      const SP::Result& r, const NP& np = CGAL::parameters::default_values())
+{
+  const SP::Distortion_report d = SP::measure_distortion(tm, map, np);
+  const double norm_error = max_norm_error(tm, map);
+  std::cerr << name << ": " << r.time_seconds << " s, " << r.iterations << " iterations (" << r.stages << "), "
+            << r.message() << std::endl;
+  report(name + ": no flipped face", d.flipped == 0, std::to_string(d.flipped) + " flipped");
+  report(name + ": no degenerate face", d.degenerate == 0, std::to_string(d.degenerate) + " degenerate");
+  report(name + ": degree 1 (1e-6)", std::abs(d.degree - 1) < 1e-6, "degree " + str(d.degree));
+  report(name + ": every point on the unit sphere (1e-12)", norm_error <= 1e-12, "| |x| - 1 | up to " + str(norm_error));
+  report(name + ": Result agrees with measure_distortion (valid, flipped, degenerate, degree)",
+         r.valid == d.is_valid() && r.flipped == d.flipped && r.degenerate == d.degenerate &&
+           std::abs(r.degree - d.degree) < 1e-9,
+         "Result valid " + std::to_string(r.valid) + " flipped " + std::to_string(r.flipped) + " degree " +
+           str(r.degree) + "; measured valid " + std::to_string(d.is_valid()) + " flipped " +
+           std::to_string(d.flipped) + " degree " + str(d.degree));
+  report(name + ": status OK or NOT_CONVERGED", r.status == SP::Error_code::OK || r.status == SP::Error_code::NOT_CONVERGED,
+         std::string(r.message()) + "; " + r.detail + "; stages " + r.stages);
+  return d;
+}
+
+Sphere_map new_sphere_map(Mesh& mesh, const std::string& name)
+{
+  return mesh.add_property_map<Vertex, Point>(name, Point(7, 7, 7)).first;
+}
+
+/// Solves with the free function into a new property map and checks the map.
+template <class NP>
+SP::Distortion_report solve_and_check(const std::string& name, Mesh& mesh, const NP& np, SP::Result* out = nullptr)
+{
+  Sphere_map map = new_sphere_map(mesh, "v:sphere_" + std::to_string(passed + failed));
+  const SP::Result r = CGAL::spherical_parameterize(mesh, map, np);
+  if(out) *out = r;
+  const SP::Distortion_report d = check_valid_map(name, mesh, map, r);
+  mesh.remove_property_map(map);
+  return d;
+}
+
+// ---------------------------------------------------------------------------------------
+// Icosphere: a mesh on the sphere maps to itself up to a rotation
+
+/// The rotation R minimizing sum |R p_i - q_i|^2 (Kabsch).
+Eigen::Matrix3d best_rotation(const Points& p, const Points& q)
+{
+  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+  for(std::size_t i = 0; i < p.size(); ++i) h += q[i] * p[i].transpose();
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  d(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1 : 1;
+  return svd.matrixU() * d * svd.matrixV().transpose();
+}
+
+void test_icosphere()
+{
+  Section_timer timer("icosphere");
+  Points points;
+  Triangles triangles;
+  icosphere(3, points, triangles);
+  Mesh mesh = mesh_from_soup<Mesh>(points, polygons_of(triangles));
+  std::vector<Vertex> vertex_of(vertices(mesh).begin(), vertices(mesh).end());  // index order
+
+  double shortest = std::numeric_limits<double>::infinity();
+  for(const auto& t : triangles)
+    for(int i = 0; i < 3; ++i) shortest = std::min(shortest, (points[t[i]] - points[t[(i + 1) % 3]]).norm());
+
+  // Start: randomly rotated, each point moved by up to 0.2 of the shortest edge.
+  const Eigen::Matrix3d rotation = random_rotation();
+  Sphere_map start = new_sphere_map(mesh, "v:start");
+  for(std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d p = (rotation * points[i] + 0.2 * shortest * uniform(0, 1) * random_unit_vector()).normalized();
+    put(start, vertex_of[i], Point(p.x(), p.y(), p.z()));
+  }
+
+  // Solved to convergence (tolerance 1e-15: Newton stops when it no longer decreases).
+  for(int which = 0; which < 2; ++which) {
+    const std::string energy = which == 0 ? "Tutte" : "Dirichlet";
+    const std::string name = "[icosphere level 3, " + energy + ", rotated and perturbed start, tolerance 1e-15]";
+    Sphere_map map = new_sphere_map(mesh, "v:map");
+    auto solve = [&](const auto& energy_policy) {
+      return CGAL::spherical_parameterize(
+        mesh, map,
+        SP::parameters::initial_sphere_map(start, SP::parameters::tolerance(1e-15, SP::parameters::energy(energy_policy)))
+          .number_of_iterations(1000));
+    };
+    const SP::Result r = which == 0 ? solve(SP::Tutte_energy()) : solve(SP::Dirichlet_energy());
+    check_valid_map(name, mesh, map, r);
+
+    Points result;
+    for(std::size_t i = 0; i < points.size(); ++i) result.push_back(to_eigen(get(map, vertex_of[i])));
+    // The 42 points of level 1 are fixed by symmetries of the icosahedron (a 5-fold or 2-fold
+    // rotation about them), so for any energy invariant under rotations and reflections the
+    // symmetric minimizer keeps them: aligned on them, they must match to solver precision.
+    const Points level1_in(points.begin(), points.begin() + 42), level1_out(result.begin(), result.begin() + 42);
+    const Eigen::Matrix3d r1 = best_rotation(level1_out, level1_in);
+    double level1_error = 0;
+    for(std::size_t i = 0; i < 42; ++i) level1_error = std::max(level1_error, (r1 * level1_out[i] - level1_in[i]).norm());
+    report(name + ": the 42 symmetry-fixed points of level 1 return to their place up to a rotation (1e-6)",
+           level1_error <= 1e-6, "max distance " + str(level1_error));
+    // The other points lie on mirror planes only and may slide along them, so the minimizer
+    // is the icosphere only approximately. Tutte's uniform weights ignore the geometry: the
+    // map is the icosphere up to a rotation when each point stays within a quarter of the
+    // shortest edge of its place (the nearest input point of every image is then its own
+    // vertex). The cotangent weights of the input make the icosphere nearly stationary (the
+    // tangential residual of the cotangent Laplacian on a sphere is small): within 1e-3, that
+    // is 1/138 of the shortest edge (2.6e-4 measured).
+    const Eigen::Matrix3d r2 = best_rotation(result, points);
+    double error = 0;
+    for(std::size_t i = 0; i < points.size(); ++i) error = std::max(error, (r2 * result[i] - points[i]).norm());
+    if(which == 0)
+      report(name + ": every point within 1/4 of the shortest edge of its place up to a rotation",
+             error <= 0.25 * shortest, "max distance " + str(error) + ", shortest edge " + str(shortest));
+    else
+      report(name + ": every point within 1e-3 of its place up to a rotation", error <= 1e-3,
+             "max distance " + str(error));
+    std::cerr << "icosphere " << energy << ": level-1 error " << level1_error << ", all-point error " << error
+              << " (shortest edge " << shortest << ")" << std::endl;
+    mesh.remove_property_map(map);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Figure 1 of the paper: without d_min^-2 the flat energy collapses the mesh
+
+/// Signed area of the spherical triangle (a, b, c), Van Oosterom and Strackee (1983).
+double spherical_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
+{
+  return 2 * std::atan2(a.dot(b.cross(c)), 1 + a.dot(b) + b.dot(c) + c.dot(a));
+}
+
+template <class SphereMap>
+double unsigned_spherical_area(const Mesh& mesh, const SphereMap& map)
+{
+  double sum = 0;
+  for(auto f : faces(mesh)) {
+    std::vector<Eigen::Vector3d> p;
+    for(auto v : vertices_around_face(halfedge(f, mesh), mesh)) p.push_back(to_eigen(get(map, v)));
+    const double a = spherical_area(p[0], p[1], p[2]);
+    sum += std::isfinite(a) ? std::abs(a) : 0;
+  }
+  return sum;
+}
+
+void test_figure_1(const Mesh& mesh, const std::string& mesh_name)
+{
+  Section_timer timer("figure 1");
+  Mesh m = mesh;
+  Sphere_map map = new_sphere_map(m, "v:flat");
+  const SP::Result flat = CGAL::spherical_parameterize(
+    m, map, SP::parameters::d_min_correction(false, SP::parameters::pipeline(SP::Pipeline::PAPER,
+                                                                             SP::parameters::energy(SP::Tutte_energy()))));
+  const SP::Distortion_report d = SP::measure_distortion(m, map);
+  const double area = unsigned_spherical_area(m, map);
+  const std::string name = "[" + mesh_name + ", Tutte, PAPER, no d_min correction]";
+  report(name + ": the map is not valid (Result and measure_distortion)", !flat.valid && !d.is_valid(),
+         "Result valid " + std::to_string(flat.valid) + ", measured valid " + std::to_string(d.is_valid()));
+  const bool collapsed = std::abs(d.degree) < 0.5 || area < 0.1 * 4 * M_PI || d.degenerate > d.faces / 2;
+  report(name + ": the map collapses (|degree| < 0.5, unsigned area < 0.1 * 4 pi or most faces degenerate)", collapsed,
+         "degree " + str(d.degree) + ", unsigned area / 4 pi " + str(area / (4 * M_PI)) + ", degenerate " +
+           std::to_string(d.degenerate) + " of " + std::to_string(d.faces));
+  std::cerr << name << ": degree " << d.degree << ", unsigned area / 4pi " << area / (4 * M_PI) << ", degenerate "
+            << d.degenerate << "/" << d.faces << ", flipped " << d.flipped << ", status " << flat.message()
+            << ", iterations " << flat.iterations << std::endl;
+
+  Sphere_map corrected_map = new_sphere_map(m, "v:corrected");
+  const SP::Result corrected = CGAL::spherical_parameterize(
+    m, corrected_map, SP::parameters::pipeline(SP::Pipeline::PAPER, SP::parameters::energy(SP::Tutte_energy())));
+  check_valid_map("[" + mesh_name + ", Tutte, PAPER, with d_min correction]", m, corrected_map, corrected);
+}
+
+// ---------------------------------------------------------------------------------------
+// PAPER pipeline: valid maps, and the energy decreases from the central projection
+
+struct Recorder
+{
+  std::vector<double>* energies;
+  bool operator()(const SP::Progress& p) const
+  {
+    energies->push_back(p.energy);
+    return true;
+  }
+};
+
+template <class Energy>
+void test_paper_pipeline(Mesh& mesh, const std::string& mesh_name, const std::string& energy_name, const Energy& energy)
+{
+  Section_timer timer("PAPER " + energy_name);
+  const std::string name = "[" + mesh_name + ", " + energy_name + ", PAPER]";
+  std::vector<double> energies;
+  Sphere_map map = new_sphere_map(mesh, "v:paper");
+  const SP::Result r = CGAL::spherical_parameterize(
+    mesh, map, SP::parameters::pipeline(SP::Pipeline::PAPER, SP::parameters::energy(energy)).visitor(Recorder{&energies}));
+  check_valid_map(name, mesh, map, r);
+
+  // The energy of the start (the central projection about the area centroid, the origin of
+  // the soup) and of the map written, evaluated outside the solver.
+  Points input, written;
+  std::map<Vertex, int> index;
+  for(Vertex v : vertices(mesh)) {
+    index.emplace(v, int(input.size()));
+    input.push_back(to_eigen(mesh.point(v)));
+    written.push_back(to_eigen(get(map, v)));
+  }
+  Triangles triangles;
+  for(auto f : faces(mesh)) {
+    std::array<int, 3> t;
+    int k = 0;
+    for(Vertex v : vertices_around_face(halfedge(f, mesh), mesh)) t[k++] = index.at(v);
+    triangles.push_back(t);
+  }
+  const SP::internal::Triangle_soup soup = SP::internal::make_triangle_soup(input, triangles);
+  Points start;
+  for(const auto& p : soup.points) start.push_back(p.normalized());
+  const SP::internal::Spherical_energy<Energy> spherical(soup, energy, true);
+  const double e0 = spherical.value(start), e1 = spherical.value(written);
+  report(name + ": the final energy is below the energy of the central projection", e1 < e0,
+         "start " + str(e0) + ", final " + str(e1));
+  report(name + ": Result.energy is the energy of the written map (rel 1e-9)",
+         std::abs(r.energy - e1) <= 1e-9 * std::abs(e1), "Result " + str(r.energy) + ", recomputed " + str(e1));
+  bool monotone = !energies.empty() && energies.front() < e0;
+  for(std::size_t i = 1; i < energies.size(); ++i) monotone = monotone && energies[i] <= energies[i - 1];
+  report(name + ": the visitor sees the energy decrease at every iteration, from below the start's",
+         monotone, std::to_string(energies.size()) + " reports");
+  mesh.remove_property_map(map);
+}
+
+// ---------------------------------------------------------------------------------------
+// Mesh and kernel types
+
+template <class TM>
+void test_surface_mesh_kind(const std::string& kind)
+{
+  TM mesh = bumpy_mesh<TM>();
+  typedef typename boost::graph_traits<TM>::vertex_descriptor VD;
+  typedef typename boost::property_traits<typename boost::property_map<TM, CGAL::vertex_point_t>::type>::value_type P;
+  auto map = mesh.template add_property_map<VD, P>("v:sphere", P(7, 7, 7)).first;
+  const SP::Result r = CGAL::spherical_parameterize(mesh, map);
+  check_valid_map("[bumpy, " + kind + ", separate property map]", mesh, map, r);
+}
+
+void test_mesh_types()
+{
+  Section_timer timer("mesh types");
+  test_surface_mesh_kind<Mesh>("Surface_mesh<Epick::Point_3>");
+  test_surface_mesh_kind<Cartesian_mesh>("Surface_mesh<Simple_cartesian<double>::Point_3>");
+
+  // Polyhedron_3, mapped in place through its own vertex point map; the input positions are
+  // kept aside to measure the map.
+  Polyhedron poly = bumpy_mesh<Polyhedron>();
+  typedef boost::graph_traits<Polyhedron>::vertex_descriptor PV;
+  std::map<PV, Point> original;
+  for(PV v : vertices(poly)) original.emplace(v, v->point());
+  const SP::Result r = CGAL::spherical_parameterize(poly, get(CGAL::vertex_point, poly));
+  const auto input_positions = boost::make_assoc_property_map(original);
+  check_valid_map("[bumpy, Polyhedron_3<Epick>, in place]", poly, get(CGAL::vertex_point, poly), r,
+                  CGAL::parameters::vertex_point_map(input_positions));
+  double moved = 0;
+  for(PV v : vertices(poly)) moved = std::max(moved, std::abs(to_eigen(v->point()).norm() - 1));
+  report("[bumpy, Polyhedron_3<Epick>, in place]: the mesh's own points are now on the unit sphere", moved <= 1e-12,
+         "| |p| - 1 | up to " + str(moved));
+}
+
+// ---------------------------------------------------------------------------------------
+// The class: precompute once, solve several times
+
+void test_class(Mesh& mesh, const std::string& mesh_name)
+{
+  Section_timer timer("class");
+  SP::Spherical_parameterizer_3<Mesh> parameterizer(SP::combined_energy(1, 1));
+  report("[" + mesh_name + ", class]: precompute succeeds", parameterizer.precompute(mesh) == SP::Error_code::OK,
+         parameterizer.input_detail());
+  Sphere_map first = new_sphere_map(mesh, "v:first"), second = new_sphere_map(mesh, "v:second");
+  const SP::Result r1 = parameterizer.solve(first);
+  const SP::Distortion_report d1 = check_valid_map("[" + mesh_name + ", class, combined(1,1)]", mesh, first, r1);
+  parameterizer.energy().set_weights({1, 10});
+  const SP::Result r2 = parameterizer.solve(second);
+  const SP::Distortion_report d2 = check_valid_map("[" + mesh_name + ", class, combined(1,10), warm start]", mesh, second, r2);
+  report("[" + mesh_name + ", class]: weights (1, 10) give a smaller mean |log area ratio| than (1, 1)",
+         d2.log_area_ratio.mean < d1.log_area_ratio.mean,
+         "(1,1): " + str(d1.log_area_ratio.mean) + ", (1,10): " + str(d2.log_area_ratio.mean));
+
+  // Energy_mix chosen by name: "combined" with (1, 1) is the same energy as combined_energy(1, 1).
+  SP::Spherical_parameterizer_3<Mesh, SP::Energy_mix> by_name(*SP::energy_by_name("combined", 1, 1));
+  by_name.precompute(mesh);
+  Sphere_map mixed = new_sphere_map(mesh, "v:mixed");
+  const SP::Result r3 = by_name.solve(mixed);
+  check_valid_map("[" + mesh_name + ", class, Energy_mix \"combined\"]", mesh, mixed, r3);
+  bool same = true;
+  for(Vertex v : vertices(mesh)) same = same && get(mixed, v) == get(first, v);
+  report("[" + mesh_name + ", class]: Energy_mix \"combined\" (1, 1) gives the same map as combined_energy(1, 1)", same);
+
+  // Switch the mix to MIPS through its weights and re-solve from the last map.
+  by_name.energy().set_weights({0, 0, 0, 0, 1});
+  const SP::Result r4 = by_name.solve(mixed, CGAL::parameters::number_of_iterations(30));
+  const SP::Distortion_report d4 = check_valid_map("[" + mesh_name + ", class, Energy_mix weights -> MIPS, warm start, 30 iterations]",
+                                                   mesh, mixed, r4);
+  report("[" + mesh_name + ", class]: the MIPS re-solve lowers the mean quasi-conformal ratio",
+         d4.quasi_conformal.mean < d1.quasi_conformal.mean,
+         "combined " + str(d1.quasi_conformal.mean) + ", MIPS " + str(d4.quasi_conformal.mean));
+  for(Sphere_map m : {first, second, mixed}) mesh.remove_property_map(m);
+}
+
+// ---------------------------------------------------------------------------------------
+// Visitor, time limit
+
+void test_interruptions(Mesh& mesh, const std::string& mesh_name)
+{
+  Section_timer timer("interruptions");
+  std::size_t calls = 0, last = 0;
+  auto stop_at_3 = [&](const SP::Progress& p) {
+    ++calls;
+    last = p.iteration;
+    return p.iteration < 3;
+  };
+  Sphere_map map = new_sphere_map(mesh, "v:cancel");
+  const SP::Result r = CGAL::spherical_parameterize(mesh, map, CGAL::parameters::visitor(stop_at_3));
+  const std::string name = "[" + mesh_name + ", visitor returns false at iteration 3]";
+  report(name + ": status CANCELLED", r.status == SP::Error_code::CANCELLED, r.message());
+  report(name + ": stops promptly (at most 4 iterations, 4 visitor calls)", r.iterations <= 4 && calls <= 4 && last <= 4,
+         std::to_string(r.iterations) + " iterations, " + std::to_string(calls) + " calls");
+  const SP::Distortion_report d = SP::measure_distortion(mesh, map);
+  report(name + ": Result.valid agrees with measure_distortion of the written map", r.valid == d.is_valid(),
+         "Result " + std::to_string(r.valid) + ", measured " + std::to_string(d.is_valid()));
+
+  const SP::Result t = CGAL::spherical_parameterize(mesh, map, CGAL::parameters::maximum_running_time(1e-9));
+  report("[" + mesh_name + ", maximum_running_time(1e-9)]: status TIME_LIMIT", t.status == SP::Error_code::TIME_LIMIT,
+         t.message());
+  mesh.remove_property_map(map);
+}
+
+// ---------------------------------------------------------------------------------------
+// Input variations: inward orientation, determinism, vertex order, jitter
+
+void test_inward(const Mesh& mesh, const std::string& mesh_name)
+{
+  Section_timer timer("inward");
+  Mesh reversed = mesh;
+  PMP::reverse_face_orientations(reversed);
+  Sphere_map map = new_sphere_map(reversed, "v:sphere");
+  const SP::Result r = CGAL::spherical_parameterize(reversed, map);
+  const std::string name = "[" + mesh_name + ", every face reversed]";
+  const SP::Distortion_report d = check_valid_map(name, reversed, map, r);
+  report(name + ": Result.inward_oriented is true", r.inward_oriented);
+  report(name + ": measure_distortion finds the input inward-oriented too", d.inward_oriented);
+}
+
+void test_determinism(Mesh& mesh, const std::string& mesh_name)
+{
+  Section_timer timer("determinism");
+  Sphere_map a = new_sphere_map(mesh, "v:a"), b = new_sphere_map(mesh, "v:b");
+  // 15 iterations per stage: enough to run every stage of the pipeline, and quick.
+  CGAL::spherical_parameterize(mesh, a, CGAL::parameters::number_of_iterations(15));
+  CGAL::spherical_parameterize(mesh, b, CGAL::parameters::number_of_iterations(15));
+  std::size_t different = 0;
+  for(Vertex v : vertices(mesh))
+    if(!(get(a, v) == get(b, v))) ++different;
+  report("[" + mesh_name + "]: two solves of the same input give bit-identical points", different == 0,
+         std::to_string(different) + " points differ");
+  mesh.remove_property_map(a);
+  mesh.remove_property_map(b);
+}
+
+void test_shuffled_and_jittered(const std::string& path, const std::string& mesh_name)
+{
+  Section_timer timer("shuffled and jittered");
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  if(!CGAL::IO::read_polygon_soup(path, points, polygons)) {
+    report("[" + mesh_name + "]: read as a polygon soup", false);
+    return;
+  }
+  // Shuffled vertex and face order.
+  std::vector<std::size_t> permutation(points.size());
+  std::iota(permutation.begin(), permutation.end(), 0);
+  std::shuffle(permutation.begin(), permutation.end(), rng);
+  Points shuffled(points.size());
+  for(std::size_t i = 0; i < points.size(); ++i) shuffled[permutation[i]] = to_eigen(points[i]);
+  std::vector<std::vector<std::size_t>> renumbered = polygons;
+  for(auto& polygon : renumbered)
+    for(auto& i : polygon) i = permutation[i];
+  std::shuffle(renumbered.begin(), renumbered.end(), rng);
+  Mesh m1 = mesh_from_soup<Mesh>(shuffled, renumbered);
+  solve_and_check("[" + mesh_name + ", shuffled vertices and faces]", m1, CGAL::parameters::default_values());
+
+  // Every coordinate moved by up to 1e-3 of the bounding box diagonal.
+  Eigen::Vector3d lo = to_eigen(points[0]), hi = lo;
+  for(const auto& p : points) {
+    lo = lo.cwiseMin(to_eigen(p));
+    hi = hi.cwiseMax(to_eigen(p));
+  }
+  const double diagonal = (hi - lo).norm();
+  Points jittered;
+  for(const auto& p : points)
+    jittered.push_back(to_eigen(p) + 1e-3 * diagonal * Eigen::Vector3d(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)));
+  Mesh m2 = mesh_from_soup<Mesh>(jittered, polygons);
+  solve_and_check("[" + mesh_name + ", vertices jittered by 1e-3 of the bounding box]", m2, CGAL::parameters::default_values());
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad input: the right error code and the output map untouched
+
+template <class NP>
+void expect_error(const std::string& name, Mesh mesh, SP::Error_code expected, const NP& np)
+{
+  Sphere_map map = new_sphere_map(mesh, "v:untouched");
+  const SP::Result r = CGAL::spherical_parameterize(mesh, map, np);
+  report(name + ": status " + SP::error_message(expected), r.status == expected,
+         std::string("got \"") + r.message() + "\" " + r.detail);
+  bool untouched = true;
+  for(Vertex v : vertices(mesh)) untouched = untouched && get(map, v) == Point(7, 7, 7);
+  report(name + ": the output map is not written", untouched);
+  report(name + ": Result.valid is false", !r.valid);
+}
+
+void test_bad_input()
+{
+  Section_timer timer("bad input");
+  const auto defaults = CGAL::parameters::default_values();
+  Points points;
+  Triangles triangles;
+  icosphere(2, points, triangles);
+  const Mesh sphere = mesh_from_soup<Mesh>(points, polygons_of(triangles));
+
+  Triangles open(triangles.begin() + 1, triangles.end());
+  expect_error("[open icosphere, one face removed]", mesh_from_soup<Mesh>(points, polygons_of(open)),
+               SP::Error_code::NOT_CLOSED, defaults);
+
+  Points two = points;
+  Triangles both = triangles;
+  for(const auto& p : points) two.push_back(p + Eigen::Vector3d(5, 0, 0));
+  for(const auto& t : triangles)
+    both.push_back({t[0] + int(points.size()), t[1] + int(points.size()), t[2] + int(points.size())});
+  expect_error("[two disjoint icospheres]", mesh_from_soup<Mesh>(two, polygons_of(both)), SP::Error_code::NOT_CONNECTED,
+               defaults);
+
+  // Torus of revolution, 24 x 12 grid, each quad split in two.
+  Points torus;
+  Triangles torus_faces;
+  const int nu = 24, nv = 12;
+  for(int i = 0; i < nu; ++i)
+    for(int j = 0; j < nv; ++j) {
+      const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
+      torus.emplace_back((2 + 0.7 * std::cos(v)) * std::cos(u), (2 + 0.7 * std::cos(v)) * std::sin(u), 0.7 * std::sin(v));
+    }
+  for(int i = 0; i < nu; ++i)
+    for(int j = 0; j < nv; ++j) {
+      const int a = i * nv + j, b = ((i + 1) % nu) * nv + j, c = ((i + 1) % nu) * nv + (j + 1) % nv, d = i * nv + (j + 1) % nv;
+      torus_faces.push_back({a, b, c});
+      torus_faces.push_back({a, c, d});
+    }
+  expect_error("[torus, genus 1]", mesh_from_soup<Mesh>(torus, polygons_of(torus_faces)), SP::Error_code::NOT_GENUS_ZERO,
+               defaults);
+
+  const Points cube{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const std::vector<std::vector<std::size_t>> quads{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                    {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  expect_error("[cube of quads]", mesh_from_soup<Mesh>(cube, quads), SP::Error_code::NOT_TRIANGLE_MESH, defaults);
+
+  expect_error("[icosphere, tolerance(-1)]", sphere, SP::Error_code::INVALID_PARAMETER, SP::parameters::tolerance(-1.0));
+  expect_error("[icosphere, number_of_iterations(0)]", sphere, SP::Error_code::INVALID_PARAMETER,
+               CGAL::parameters::number_of_iterations(0));
+}
+
+// ---------------------------------------------------------------------------------------
+// Valid maps on CGAL's sample meshes
+
+template <class Energy>
+void test_sample(const std::string& file, const std::string& energy_name, const Energy& energy)
+{
+  Mesh mesh;
+  const std::string name = "[" + file + ", " + energy_name + ", ROBUST]";
+  const std::string path = (file == "triceratops.off" ? data_dir : meshes_dir) + "/" + file;
+  if(!read_mesh(path, mesh)) {
+    skip(name, path + " not found");
+    return;
+  }
+  Section_timer timer(file + " " + energy_name);
+  solve_and_check(name, mesh, SP::parameters::energy(energy));
+}
+
+int main(int argc, char** argv)
+{
+  meshes_dir = argc > 1 ? argv[1] : "/tmp/cgaldata/data/meshes";
+  data_dir = argc > 2 ? argv[2] : "data";
+  const auto start = std::chrono::steady_clock::now();
+
+  test_icosphere();
+  test_mesh_types();
+  test_bad_input();
+
+  for(const std::string file : {"triceratops.off", "hand.off", "blobby.off", "retinal.off"}) {
+    test_sample(file, "Tutte", SP::Tutte_energy());
+    test_sample(file, "Dirichlet", SP::Dirichlet_energy());
+    test_sample(file, "combined(1,1)", SP::combined_energy(1, 1));
+  }
+
+  Mesh triceratops;
+  const std::string path = data_dir + "/triceratops.off";
+  if(read_mesh(path, triceratops)) {
+    test_figure_1(triceratops, "triceratops");
+    test_paper_pipeline(triceratops, "triceratops", "Tutte", SP::Tutte_energy());
+    test_paper_pipeline(triceratops, "triceratops", "Dirichlet", SP::Dirichlet_energy());
+    test_paper_pipeline(triceratops, "triceratops", "combined(1,1)", SP::combined_energy(1, 1));
+    test_class(triceratops, "triceratops");
+    test_interruptions(triceratops, "triceratops");
+    test_inward(triceratops, "triceratops");
+    test_determinism(triceratops, "triceratops");
+    test_shuffled_and_jittered(path, "triceratops");
+  } else {
+    for(const char* test : {"Figure 1 collapse", "PAPER pipeline", "class", "visitor and time limit",
+                            "inward orientation", "determinism", "shuffled and jittered"})
+      skip(std::string("[triceratops] ") + test, path + " not found");
+  }
+
+  std::cerr << "time total: " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+            << " s" << std::endl;
+  std::cout << passed << " passed, " << failed << " failed" << std::endl;
+  return failed == 0 ? 0 : 1;
+}
