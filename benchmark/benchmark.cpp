@@ -13,14 +13,14 @@
 // Each run is done in a forked child process, so that its peak memory (ru_maxrss of the
 // child) belongs to that run alone; see README.md.
 
-#include <CGAL/spherical_parameterize.h>
-#include <CGAL/Spherical_parameterization/Energy_mix.h>
-#include <CGAL/Spherical_parameterization/measure_distortion.h>
-
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/subdivision_method_3.h>
+
+#include <CGAL/spherical_parameterize.h>
+#include <CGAL/Spherical_parameterization/Energy_mix.h>
+#include <CGAL/Spherical_parameterization/measure_distortion.h>
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -34,6 +34,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -234,32 +235,34 @@ Run_record run_once(Mesh& mesh, const SP::Energy_mix& energy, SP::Pipeline pipel
   return record;
 }
 
-// Runs run_once() in a forked child, which writes its record to a pipe. A child that
-// crashes (or is killed, e.g. out of memory) gives a record with ran == false.
-Run_record run_forked(Mesh& mesh, const SP::Energy_mix& energy, SP::Pipeline pipeline, double max_seconds)
+// Runs `task` in a forked child, which sends its result (plain data) back through a pipe.
+// Empty if the child crashed or was killed (e.g. out of memory); `failure` then says how.
+// Everything that may start threads (CHOLMOD's OpenMP, TBB) runs in children only: a
+// process that forks after its OpenMP runtime has started threads can deadlock in the child.
+template <class T, class Task>
+std::optional<T> in_child(const Task& task, std::string& failure)
 {
-  Run_record record;
   int fds[2];
   if(pipe(fds) != 0) {
-    std::perror("pipe");
-    return record;
+    failure = std::string("pipe: ") + std::strerror(errno);
+    return std::nullopt;
   }
   std::cout.flush();
   std::cerr.flush();
   const pid_t pid = fork();
   if(pid < 0) {
-    std::perror("fork");
+    failure = std::string("fork: ") + std::strerror(errno);
     close(fds[0]);
     close(fds[1]);
-    return record;
+    return std::nullopt;
   }
   if(pid == 0) {
     close(fds[0]);
-    const Run_record child = run_once(mesh, energy, pipeline, max_seconds);
-    const char* bytes = reinterpret_cast<const char*>(&child);
+    const T result = task();
+    const char* bytes = reinterpret_cast<const char*>(&result);
     std::size_t written = 0;
-    while(written < sizeof(child)) {
-      const ssize_t n = write(fds[1], bytes + written, sizeof(child) - written);
+    while(written < sizeof(T)) {
+      const ssize_t n = write(fds[1], bytes + written, sizeof(T) - written);
       if(n <= 0)
         _exit(2);
       written += std::size_t(n);
@@ -268,10 +271,11 @@ Run_record run_forked(Mesh& mesh, const SP::Energy_mix& energy, SP::Pipeline pip
     _exit(0);
   }
   close(fds[1]);
-  char* bytes = reinterpret_cast<char*>(&record);
+  T result;
+  char* bytes = reinterpret_cast<char*>(&result);
   std::size_t received = 0;
-  while(received < sizeof(record)) {
-    const ssize_t n = read(fds[0], bytes + received, sizeof(record) - received);
+  while(received < sizeof(T)) {
+    const ssize_t n = read(fds[0], bytes + received, sizeof(T) - received);
     if(n <= 0)
       break;
     received += std::size_t(n);
@@ -279,13 +283,23 @@ Run_record run_forked(Mesh& mesh, const SP::Energy_mix& energy, SP::Pipeline pip
   close(fds[0]);
   int wstatus = 0;
   waitpid(pid, &wstatus, 0);
-  if(received != sizeof(record) || !WIFEXITED(wstatus) || WEXITSTATUS(wstatus) != 0) {
-    record = Run_record();
-    std::snprintf(record.detail, sizeof(record.detail), "child process %s %d",
-                  WIFSIGNALED(wstatus) ? "killed by signal" : "exited with",
-                  WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : WEXITSTATUS(wstatus));
-  }
-  return record;
+  if(received == sizeof(T) && WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0)
+    return result;
+  failure = WIFSIGNALED(wstatus) ? "child process killed by signal " + std::to_string(WTERMSIG(wstatus))
+                                 : "child process exited with " + std::to_string(WEXITSTATUS(wstatus));
+  return std::nullopt;
+}
+
+Run_record run_forked(Mesh& mesh, const SP::Energy_mix& energy, SP::Pipeline pipeline, double max_seconds)
+{
+  std::string failure;
+  const std::optional<Run_record> record =
+    in_child<Run_record>([&] { return run_once(mesh, energy, pipeline, max_seconds); }, failure);
+  if(record)
+    return *record;
+  Run_record crashed;
+  copy_string(crashed.detail, sizeof(crashed.detail), failure);
+  return crashed;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -364,11 +378,20 @@ double median(std::vector<double> values)
   return values.size() % 2 ? values[m] : 0.5 * (values[m - 1] + values[m]);
 }
 
-// Median of 3 times of (symbolic analysis + numeric factorization + one solve); assembling
-// the matrix is not timed. Negative if the factorization failed.
-double yardstick_seconds(const Mesh& mesh, std::string& kind)
+struct Yardstick
 {
+  double seconds = -1;  // median of 3; negative if the factorization failed
+  bool cotangent = true;  // false: the uniform graph Laplacian was used
+};
+
+// Median of 3 times of (symbolic analysis + numeric factorization + one solve); assembling
+// the matrix is not timed.
+Yardstick measure_yardstick(const Mesh& mesh)
+{
+  Yardstick out;
+  std::string kind;
   const Sparse matrix = laplacian(mesh, kind);
+  out.cotangent = kind == "cotan";
   Eigen::VectorXd rhs(matrix.rows());
   for(Eigen::Index i = 0; i < rhs.size(); ++i)
     rhs[i] = std::sin(double(i));  // anything not in the near-kernel
@@ -378,13 +401,14 @@ double yardstick_seconds(const Mesh& mesh, std::string& kind)
     Yardstick_solver solver;
     solver.compute(matrix);
     if(solver.info() != Eigen::Success)
-      return -1;
+      return out;
     const Eigen::VectorXd x = solver.solve(rhs);
     times.push_back(std::chrono::duration<double>(Clock::now() - start).count());
     if(!x.allFinite())
-      return -1;
+      return out;
   }
-  return median(times);
+  out.seconds = median(times);
+  return out;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -460,7 +484,7 @@ const char* status_name(int status, bool ran)
 
 void print_header()
 {
-  std::printf("%-18s %8s %-9s %9s %9s %8s %5s %11s %-5s %5s %5s %7s %7s %7s %7s %7s %7s %8s %8s  %s\n", "mesh",
+  std::printf("%-18s %8s %-9s %9s %9s %8s %5s %11s %-5s %5s %5s %7s %8s %8s %8s %9s %8s %8s %8s  %s\n", "mesh",
               "faces", "energy", "time_s", "chol_s", "ratio", "iters", "energy_val", "valid", "flip", "degen",
               "degree", "qc_mean", "qc_p95", "logA", "minA", "L2str", "peak_MB", "dpeakMB", "status / stages");
 }
@@ -468,7 +492,7 @@ void print_header()
 void print_row(const Row& r)
 {
   const Run_record& x = r.run;
-  std::printf("%-18s %8zu %-9s %9.3f %9.4f %8.1f %5zu %11.5g %-5s %5zu %5zu %7.4f %7.4f %7.4f %7.4f %7.4f %7.4f "
+  std::printf("%-18s %8zu %-9s %9.3f %9.4f %8.1f %5zu %11.5g %-5s %5zu %5zu %7.4f %8.3f %8.3f %8.3f %9.2e %8.2f "
               "%8.1f %8.1f  %s %s\n",
               r.mesh.c_str(), r.faces, r.energy.c_str(), r.time, r.yardstick,
               r.yardstick > 0 ? r.time / r.yardstick : 0.0, x.iterations, x.energy, x.valid ? "yes" : "NO",
@@ -611,8 +635,16 @@ int main(int argc, char** argv)
       CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(in.loops));
     mesh.collect_garbage();  // contiguous vertex indices for the Laplacian
 
-    std::string kind;
-    const double yardstick = yardstick_seconds(mesh, kind);
+    std::string failure;
+    const std::optional<Yardstick> measured =
+      options.fork_runs ? in_child<Yardstick>([&] { return measure_yardstick(mesh); }, failure)
+                        : std::optional<Yardstick>(measure_yardstick(mesh));
+    if(!measured)
+      std::cerr << in.name << ": yardstick: " << failure << '\n';
+    const double yardstick = measured ? measured->seconds : -1;
+    const std::string kind = measured ? (measured->cotangent ? "cotan" : "uniform") : "none";
+    if(measured && measured->seconds < 0)
+      std::cerr << in.name << ": the yardstick factorization failed\n";
     const int repeats = options.repeats ? *options.repeats : (mesh.number_of_faces() > 200000 ? 1 : 3);
 
     for(const std::string& energy_name : options.energies) {

@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# Builds the benchmark in Release and runs it over CGAL's sample meshes; writes
+# benchmark/results/latest.csv and latest.json, then the plots (see README.md).
+#
+# usage: benchmark/run_benchmark.sh [--quick] [--full] [--energies LIST] [--pipeline robust|paper]
+#                                   [--data DIR] [--build-dir DIR]
+#   --quick          only the meshes under 15k faces, 1 repeat each
+#   --full           also bunny00 Loop-subdivided once (300k faces) and twice (1.2M faces)
+#   --energies LIST  comma-separated, default tutte,dirichlet,combined
+#   --pipeline P     robust (default) or paper
+#   --data DIR       a folder holding the .off meshes; default: CGAL's data tarball
+#                    /usr/share/doc/libcgal-dev/data.tar.gz (Debian package libcgal-demo),
+#                    extracted to a temporary folder
+#   --build-dir DIR  default build (relative to the repository root)
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(cd "$here/.." && pwd)"
+
+quick=0
+full=0
+energies="tutte,dirichlet,combined"
+pipeline="robust"
+data=""
+build_dir="build"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --quick) quick=1 ;;
+    --full) full=1 ;;
+    --energies) energies="$2"; shift ;;
+    --pipeline) pipeline="$2"; shift ;;
+    --data) data="$2"; shift ;;
+    --build-dir) build_dir="$2"; shift ;;
+    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+    *) echo "unknown option $1" >&2; exit 1 ;;
+  esac
+  shift
+done
+
+corpus=(hand blobby triceratops cow retinal homer bull camel bear fandisk_large man diplodocus armadillo bunny00)
+
+# The meshes.
+tmp=""
+cleanup() { if [ -n "$tmp" ]; then rm -rf "$tmp"; fi; }
+trap cleanup EXIT
+if [ -z "$data" ]; then
+  tarball=/usr/share/doc/libcgal-dev/data.tar.gz
+  if [ ! -f "$tarball" ]; then
+    echo "no $tarball: install the Debian package libcgal-demo, or pass --data DIR" >&2
+    exit 1
+  fi
+  tmp="$(mktemp -d)"
+  members=()
+  for m in "${corpus[@]}"; do members+=("data/meshes/$m.off"); done
+  tar -xzf "$tarball" -C "$tmp" "${members[@]}"
+  data="$tmp/data/meshes"
+fi
+data="$(cd "$data" && pwd)"
+
+# Number of faces from an OFF header (comments and blank lines skipped; "OFF" may share
+# its line with the counts).
+off_faces() {
+  awk '{ sub(/#.*/, "") } { for(i = 1; i <= NF; ++i) t[n++] = $i } n >= 4 { exit }
+       END { k = (t[0] ~ /OFF$/) ? 1 : 0; print t[k + 1] }' "$1"
+}
+
+meshes=()
+for m in "${corpus[@]}"; do
+  file="$data/$m.off"
+  if [ ! -f "$file" ]; then
+    echo "missing $file, skipped" >&2
+    continue
+  fi
+  if [ "$quick" = 1 ] && [ "$(off_faces "$file")" -ge 15000 ]; then
+    continue
+  fi
+  meshes+=("$file")
+done
+if [ "$full" = 1 ] && [ "$quick" = 0 ] && [ -f "$data/bunny00.off" ]; then
+  meshes+=("$data/bunny00.off@loop1" "$data/bunny00.off@loop2")
+fi
+if [ ${#meshes[@]} -eq 0 ]; then
+  echo "no mesh to run" >&2
+  exit 1
+fi
+
+# Build, one translation unit, in Release. Tests and examples are only configured when
+# their folders have a CMakeLists.txt.
+cd "$root"
+config=(-DCMAKE_BUILD_TYPE=Release)
+[ -f test/CMakeLists.txt ] || config+=(-DSPHERICAL_PARAMETERIZATION_BUILD_TESTS=OFF)
+[ -f examples/CMakeLists.txt ] || config+=(-DSPHERICAL_PARAMETERIZATION_BUILD_EXAMPLES=OFF)
+cmake -S . -B "$build_dir" "${config[@]}" >/dev/null
+cmake --build "$build_dir" --target benchmark
+binary="$build_dir/bin/benchmark"
+
+# Run.
+results="$here/results"
+mkdir -p "$results"
+args=(--energies "$energies" --pipeline "$pipeline" --csv "$results/latest.csv" --json "$results/latest.json")
+if [ "$quick" = 1 ]; then args+=(--repeats 1); fi
+status=0
+"$binary" "${args[@]}" "${meshes[@]}" | tee "$results/latest.txt" || status=$?
+
+# Plot, with a Python that has matplotlib (the Debian one if the first python3 has none).
+python=""
+for candidate in python3 /usr/bin/python3; do
+  if command -v "$candidate" >/dev/null && "$candidate" -c 'import matplotlib' 2>/dev/null; then
+    python="$candidate"
+    break
+  fi
+done
+if [ -z "$python" ]; then
+  echo "no python3 with matplotlib (Debian package python3-matplotlib): no plots" >&2
+  exit 1
+fi
+"$python" "$here/plot_results.py" "$results/latest.json" --out "$results"
+exit "$status"
