@@ -46,7 +46,9 @@ spherical_parameterize(const TriangleMesh& tm, SphereMap sphere_map,
   const auto energy = choose_parameter(get_parameter(np, SP::internal_np::energy_t()), SP::combined_energy(1, 1));
   using Solver = std::decay_t<decltype(choose_parameter(get_parameter(np, internal_np::sparse_linear_solver),
                                                         SP::Default_sparse_solver_traits()))>;
-  SP::Spherical_parameterizer_3<TriangleMesh, std::decay_t<decltype(energy)>, Solver> parameterizer(energy);
+  using Geom_traits = typename GetGeomTraits<TriangleMesh, NamedParameters>::type;
+  const Geom_traits traits = choose_parameter<Geom_traits>(get_parameter(np, internal_np::geom_traits));
+  SP::Spherical_parameterizer_3<TriangleMesh, std::decay_t<decltype(energy)>, Geom_traits, Solver> parameterizer(energy, traits);
 
   SP::Result result;
   result.status = parameterizer.precompute(tm, np);

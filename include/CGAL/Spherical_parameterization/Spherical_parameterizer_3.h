@@ -20,6 +20,7 @@
 #include <CGAL/Spherical_parameterization/internal/initialization.h>
 #include <CGAL/Spherical_parameterization/internal/map_validity.h>
 
+#include <CGAL/Default.h>
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -48,20 +49,25 @@ namespace Spherical_parameterization {
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph`
 /// \tparam Energy a model of `SphericalEnergy`, by default `Combined_energy`
+/// \tparam GeomTraits the kernel of the input points, by default that of the mesh's vertex
+///         point map; its `Compute_x_3` (y, z) functors read the coordinates
 /// \tparam SolverTraits a model of `SphericalSparseSolverTraits`, by default CHOLMOD when
 ///         available, else Eigen's `SimplicialLDLT`
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` or `CGAL::Parallel_tag` (needs TBB)
 template <class TriangleMesh,
           class Energy = Combined_energy,
+          class GeomTraits = CGAL::Default,
           class SolverTraits = Default_sparse_solver_traits,
           class ConcurrencyTag = CGAL::Sequential_tag>
 class Spherical_parameterizer_3
 {
   using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
+  using Geom_traits = typename CGAL::Default::Get<GeomTraits, typename GetGeomTraits<TriangleMesh>::type>::type;
   using Newton = internal::Newton_solver<SolverTraits, ConcurrencyTag>;
 
 public:
-  explicit Spherical_parameterizer_3(const Energy& energy = default_energy()) : energy_(energy) {}
+  explicit Spherical_parameterizer_3(const Energy& energy = default_energy(), const Geom_traits& traits = Geom_traits())
+    : energy_(energy), traits_(traits) {}
 
   /// The energy; change its weights between two solves.
   Energy& energy() { return energy_; }
@@ -93,7 +99,9 @@ public:
     for(vertex_descriptor v : vertices_) {
       index.emplace(v, int(points.size()));
       const auto& p = get(vpm, v);
-      points.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+      points.emplace_back(CGAL::to_double(traits_.compute_x_3_object()(p)),
+                          CGAL::to_double(traits_.compute_y_3_object()(p)),
+                          CGAL::to_double(traits_.compute_z_3_object()(p)));
     }
     internal::Faces triangles;
     for(auto f : faces(tm)) {
@@ -335,6 +343,7 @@ private:
   }
 
   Energy energy_;
+  Geom_traits traits_;
   internal::Triangle_soup soup_;
   std::vector<vertex_descriptor> vertices_;
   std::unique_ptr<Newton> solver_;
