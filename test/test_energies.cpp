@@ -22,6 +22,8 @@
 #include <CGAL/Spherical_parameterization/internal/step_bound.h>
 #include <CGAL/Spherical_parameterization/internal/tangent_basis.h>
 
+#include "test_support.h"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -46,45 +48,7 @@ using Coordinates = Eigen::Matrix<double, 9, 1>;
 // ---------------------------------------------------------------------------------------
 // Harness
 
-int passed = 0, failed = 0;
-
-void report(const std::string& name, bool ok, const std::string& why = std::string())
-{
-  std::cout << (ok ? "PASS " : "FAIL ") << name;
-  if(!ok && !why.empty())
-    std::cout << "  (" << why << ")";
-  std::cout << std::endl;
-  ++(ok ? passed : failed);
-}
-
-std::string str(double v)
-{
-  std::ostringstream s;
-  s.precision(3);
-  s << v;
-  return s.str();
-}
-
-std::mt19937_64 rng(20260501);
-
-double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
-
-Vector random_unit_vector()
-{
-  std::normal_distribution<double> normal;
-  Vector v;
-  do v = Vector(normal(rng), normal(rng), normal(rng));
-  while(v.norm() < 1e-3);
-  return v.normalized();
-}
-
-Eigen::Matrix3d random_rotation()
-{
-  std::normal_distribution<double> normal;
-  Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
-  q.normalize();
-  return q.toRotationMatrix();
-}
+using namespace test_support;
 
 // ---------------------------------------------------------------------------------------
 // Random triangles
@@ -713,6 +677,7 @@ void test_tangent_basis()
 
 int main()
 {
+  rng.seed(20260501);
   test_energies();
   test_untangling_on_folded_faces();
   test_squared_d_min();

@@ -7,6 +7,8 @@
 
 #include <CGAL/Spherical_parameterization/internal/check_input.h>
 
+#include "test_support.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -45,23 +47,8 @@ typedef std::vector<std::vector<std::size_t>> Polygons;
 // ---------------------------------------------------------------------------------------
 // Harness
 
-int passed = 0, failed = 0, skipped = 0;
+using namespace test_support;
 std::string data_dir;
-
-void report(const std::string& name, bool ok, const std::string& why = std::string())
-{
-  std::cout << (ok ? "PASS " : "FAIL ") << name;
-  if(!ok && !why.empty())
-    std::cout << "  (" << why << ")";
-  std::cout << std::endl;
-  ++(ok ? passed : failed);
-}
-
-void skip(const std::string& name, const std::string& why)
-{
-  std::cout << "SKIP " << name << "  (" << why << ")" << std::endl;
-  ++skipped;
-}
 
 template <class M>
 SP::internal::Input_report check(const M& m)

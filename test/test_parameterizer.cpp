@@ -24,6 +24,8 @@
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
 
+#include "test_support.h"
+
 #include <boost/property_map/property_map.hpp>
 
 #include <Eigen/Core>
@@ -62,31 +64,8 @@ typedef std::vector<std::array<int, 3>> Triangles;
 // ---------------------------------------------------------------------------------------
 // Harness
 
-int passed = 0, failed = 0, skipped = 0;
+using namespace test_support;
 std::string meshes_dir, data_dir;
-
-void report(const std::string& name, bool ok, const std::string& why = std::string())
-{
-  std::cout << (ok ? "PASS " : "FAIL ") << name;
-  if(!ok && !why.empty())
-    std::cout << "  (" << why << ")";
-  std::cout << std::endl;
-  ++(ok ? passed : failed);
-}
-
-void skip(const std::string& name, const std::string& why)
-{
-  std::cout << "SKIP " << name << "  (" << why << ")" << std::endl;
-  ++skipped;
-}
-
-std::string str(double v)
-{
-  std::ostringstream s;
-  s.precision(4);
-  s << v;
-  return s.str();
-}
 
 struct Section_timer
 {
@@ -99,25 +78,6 @@ struct Section_timer
               << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s" << std::endl;
   }
 };
-
-std::mt19937_64 rng(77);
-
-double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
-
-Eigen::Vector3d random_unit_vector()
-{
-  std::normal_distribution<double> normal;
-  Eigen::Vector3d v(normal(rng), normal(rng), normal(rng));
-  return v.normalized();
-}
-
-Eigen::Matrix3d random_rotation()
-{
-  std::normal_distribution<double> normal;
-  Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
-  q.normalize();
-  return q.toRotationMatrix();
-}
 
 template <class P>
 Eigen::Vector3d to_eigen(const P& p)
@@ -702,6 +662,7 @@ void test_sample(const std::string& file, const std::string& energy_name, const 
 
 int main(int argc, char** argv)
 {
+  rng.seed(77);
   meshes_dir = argc > 1 ? argv[1] : "/tmp/cgaldata/data/meshes";
   data_dir = argc > 2 ? argv[2] : "data";
   const auto start = std::chrono::steady_clock::now();
