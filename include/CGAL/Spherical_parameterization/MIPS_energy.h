@@ -19,8 +19,8 @@ namespace Spherical_parameterization {
 /// \cgalModels `SphericalEnergy`
 struct MIPS_energy
 {
-  struct Face_data { std::array<double, 3> weights; double input_area; };
-  Face_data face_data(const Reference_triangle& r) const { return {r.exact_half_cotangents(), r.area}; }
+  using Face_data = Jacobian_face_data;
+  Face_data face_data(const Reference_triangle& r) const { return Face_data(r); }
 
   template <class Number>
   Number flat_energy(const Chord_triangle<Number>& t, const Face_data& d) const

@@ -56,6 +56,17 @@ struct Reference_triangle
   }
 };
 
+/// \ingroup PkgSphericalParameterizationEnergies
+/// The per-face data of energies of the Jacobian (stretch, MIPS, untangling): the exact half
+/// cotangents, with which `sum_i w_i |e_i|^2 = InputArea * |J|_F^2`, and the input area.
+struct Jacobian_face_data
+{
+  std::array<double, 3> weights;
+  double input_area;
+
+  explicit Jacobian_face_data(const Reference_triangle& r) : weights(r.exact_half_cotangents()), input_area(r.area) {}
+};
+
 } // namespace Spherical_parameterization
 } // namespace CGAL
 

@@ -24,8 +24,8 @@ struct Untangling_energy
   double epsilon = 1;
   double theta = 0.5;
 
-  struct Face_data { std::array<double, 3> weights; double input_area; };
-  Face_data face_data(const Reference_triangle& r) const { return {r.exact_half_cotangents(), r.area}; }
+  using Face_data = Jacobian_face_data;
+  Face_data face_data(const Reference_triangle& r) const { return Face_data(r); }
 
   template <class Number>
   Number flat_energy(const Chord_triangle<Number>& t, const Face_data& d) const
@@ -45,8 +45,8 @@ struct Untangling_energy
 /// search that never crosses `det = 0` it keeps a fold-free map fold-free.
 struct Signed_stretch_energy
 {
-  struct Face_data { std::array<double, 3> weights; double input_area; };
-  Face_data face_data(const Reference_triangle& r) const { return {r.exact_half_cotangents(), r.area}; }
+  using Face_data = Jacobian_face_data;
+  Face_data face_data(const Reference_triangle& r) const { return Face_data(r); }
 
   template <class Number>
   Number flat_energy(const Chord_triangle<Number>& t, const Face_data& d) const
