@@ -258,10 +258,12 @@ private:
       return false;
     mu_floor_ = 1e-9 * mean_diagonal;
     mu = std::max(mu, mu_floor_);
-    const std::vector<double> unshifted(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros());
+    std::vector<double> diagonal(2 * n_);  // only the diagonal changes with the shift
+    for(std::size_t i = 0; i < 2 * n_; ++i)
+      diagonal[i] = matrix_.valuePtr()[diagonal_index_[i]];
     for(int attempt = 0; attempt < 60 && mu <= max_relative_shift * mean_diagonal; ++attempt, mu *= 8) {
       for(std::size_t i = 0; i < 2 * n_; ++i)
-        matrix_.valuePtr()[diagonal_index_[i]] = unshifted[diagonal_index_[i]] + mu;
+        matrix_.valuePtr()[diagonal_index_[i]] = diagonal[i] + mu;
       if(solver_.factorize(matrix_)) {
         d = solver_.solve(-gradient_);
         return d.allFinite();
