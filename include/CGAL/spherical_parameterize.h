@@ -48,7 +48,13 @@ spherical_parameterize(const TriangleMesh& tm, SphereMap sphere_map,
                                                         SP::Default_sparse_solver_traits()))>;
   using Geom_traits = typename GetGeomTraits<TriangleMesh, NamedParameters>::type;
   const Geom_traits traits = choose_parameter<Geom_traits>(get_parameter(np, internal_np::geom_traits));
-  SP::Spherical_parameterizer_3<TriangleMesh, std::decay_t<decltype(energy)>, Geom_traits, Solver> parameterizer(energy, traits);
+#ifdef CGAL_LINKED_WITH_TBB
+  using Concurrency = CGAL::Parallel_tag;  // per-face work on all cores; results do not depend on it
+#else
+  using Concurrency = CGAL::Sequential_tag;
+#endif
+  SP::Spherical_parameterizer_3<TriangleMesh, std::decay_t<decltype(energy)>, Geom_traits, Solver, Concurrency>
+    parameterizer(energy, traits);
 
   SP::Result result;
   result.status = parameterizer.precompute(tm, np);

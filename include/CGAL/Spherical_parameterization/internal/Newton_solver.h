@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace CGAL {
@@ -87,7 +88,7 @@ public:
                           Visitor& visitor)
   {
     Newton_outcome out;
-    double e = energy.value(x);
+    double e = total_energy(energy, x);
     out.energy = e;
     if(!std::isfinite(e)) {
       out.stop = Newton_stop::NON_FINITE_START;
@@ -266,7 +267,9 @@ private:
     if(!std::isfinite(mean_diagonal) || mean_diagonal == 0)
       return false;
     mu_floor_ = 1e-9 * mean_diagonal;
-    mu = std::max(mu, mu_floor_);
+    // The first exact attempt of a solve starts at 1e-4 x the mean diagonal: starts are far
+    // from a minimum, and growing from the floor cost 7 failed factorizations on bear.
+    mu = std::max(mu == 0 && !projected ? 1e-4 * mean_diagonal : mu, mu_floor_);
     std::vector<double> diagonal(2 * n_);  // only the diagonal changes with the shift
     for(std::size_t i = 0; i < 2 * n_; ++i)
       diagonal[i] = matrix_.valuePtr()[diagonal_index_[i]];
@@ -290,15 +293,35 @@ private:
     return v;
   }
 
+  // The energy, faces evaluated in parallel with Parallel_tag and summed in a fixed order,
+  // so that the result does not depend on the number of threads.
+  template <class Energy>
+  double total_energy(const Spherical_energy<Energy>& energy, const Points& x)
+  {
+    if constexpr(std::is_same<ConcurrencyTag, CGAL::Sequential_tag>::value) {
+      return energy.value(x);
+    } else {
+      face_value_.resize(faces_->size());
+      parallel_for<ConcurrencyTag>(faces_->size(), [&](std::size_t f) { face_value_[f] = energy.template face<double>(f, x); });
+      double sum = 0;
+      for(double e : face_value_) {
+        if(!std::isfinite(e))
+          return std::numeric_limits<double>::infinity();
+        sum += e;
+      }
+      return sum;
+    }
+  }
+
   // Armijo backtracking from `alpha`; returns the accepted energy (or +inf) with the point in `trial`.
   template <class Energy>
   double line_search(const Spherical_energy<Energy>& energy, const Points& x, const Vector& d, double e0,
-                     double decrement, double& alpha, Points& trial) const
+                     double decrement, double& alpha, Points& trial)
   {
     for(int k = 0; k < 50 && alpha > 0; ++k, alpha *= 0.5) {
       for(std::size_t v = 0; v < n_; ++v)
         trial[v] = retract(x[v], bases_[v], alpha * d.template segment<2>(2 * v));
-      const double e = energy.value(trial);
+      const double e = total_energy(energy, trial);
       if(std::isfinite(e) && e <= e0 - 1e-4 * alpha * decrement)
         return e;
     }
@@ -317,6 +340,7 @@ private:
   std::vector<Basis> bases_;
   std::vector<Triangle_jet::Gradient> face_gradient_;
   std::vector<double> face_hessian_;
+  std::vector<double> face_value_;
   std::vector<Eigen::Vector3d> ambient_gradient_;
   Vector gradient_;
 };
