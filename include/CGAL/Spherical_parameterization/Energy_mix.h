@@ -20,8 +20,8 @@ namespace Spherical_parameterization {
 
 /// \ingroup PkgSphericalParameterizationEnergies
 /// The energy chosen at run time: a weighted sum of the five built-in energies, in the order
-/// Tutte, Dirichlet, Area, Stretch, MIPS. This is the default energy type of
-/// `spherical_parameterize()` and what the command line uses.
+/// Tutte, Dirichlet, Area, Stretch, MIPS: what the command line uses. (The default energy of
+/// `spherical_parameterize()` is `combined_energy(1, 1)`, of type `Combined_energy`.)
 using Energy_mix = Weighted_sum<Tutte_energy, Dirichlet_energy, Area_energy, Stretch_energy, MIPS_energy>;
 
 /// \ingroup PkgSphericalParameterizationEnergies

@@ -124,7 +124,9 @@ public:
   /// the solver ran; check `Result::is_valid()`.
   /// \cgalNamedParamsBegin
   ///   \cgalParamNBegin{pipeline} `Pipeline::ROBUST` (default) or `Pipeline::PAPER` \cgalParamNEnd
-  ///   \cgalParamNBegin{initial_sphere_map} a start on the sphere; default: the pipeline's \cgalParamNEnd
+  ///   \cgalParamNBegin{initial_sphere_map} a start on the sphere; default: the pipeline's.
+  ///     With the robust pipeline its degree must be 1 relative to the input's orientation;
+  ///     the paper pipeline takes it as it is \cgalParamNEnd
   ///   \cgalParamNBegin{d_min_correction} default `true` \cgalParamNEnd
   ///   \cgalParamNBegin{number_of_iterations} cap on Newton iterations per stage; default 200 \cgalParamNEnd
   ///   \cgalParamNBegin{tolerance} relative energy decrease at which to stop; default 1e-8 \cgalParamNEnd
@@ -149,15 +151,16 @@ public:
     if(max_seconds > 0)
       run.options.deadline = run.options.start + std::chrono::duration_cast<internal::Clock::duration>(
                                                    std::chrono::duration<double>(max_seconds));
-    run.options.max_iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 200);
+    const long long max_iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 200);
     run.options.tolerance = choose_parameter(get_parameter(np, internal_np::tolerance_t()), 1e-8);
     run.correction = choose_parameter(get_parameter(np, internal_np::d_min_correction_t()), true);
     run.pipeline = choose_parameter(get_parameter(np, internal_np::pipeline_t()), Pipeline::ROBUST);
-    if(!(run.options.tolerance >= 0) || run.options.max_iterations == 0 || !(max_seconds >= 0)) {
+    if(!(run.options.tolerance >= 0) || max_iterations <= 0 || !(max_seconds >= 0)) {
       result.status = Error_code::INVALID_PARAMETER;
-      result.detail = "tolerance, number_of_iterations and maximum_running_time must be positive";
+      result.detail = "number_of_iterations must be positive, tolerance and maximum_running_time non-negative";
       return result;
     }
+    run.options.max_iterations = std::size_t(max_iterations);
 
     internal::Points x;
     if(!initial_map(np, run, x, result))
@@ -290,7 +293,6 @@ private:
     run.iterations += out.iterations;
     run.stages += std::string(run.stages.empty() ? "" : " ") + stage + ":" + std::to_string(out.iterations);
     last_stop_ = out.stop;
-    last_energy_ = out.energy;
     if(out.stop == internal::Newton_stop::CANCELLED || out.stop == internal::Newton_stop::TIME_LIMIT) {
       run.interrupted = out.stop;
       return false;
@@ -307,7 +309,8 @@ private:
     }
     result.valid = validity.is_valid();
     result.iterations = run.iterations;
-    result.energy = last_energy_;
+    // The chosen energy alone: the target stage also carries the fold barrier.
+    result.energy = internal::Spherical_energy<Energy>(soup_, energy_, run.correction).value(x);
     result.flipped = validity.flipped;
     result.degenerate = validity.degenerate;
     result.degree = validity.degree;  // the soup's faces carry the input's orientation outward
@@ -355,7 +358,6 @@ private:
   internal::Points last_map_;
   std::string input_detail_;
   internal::Newton_stop last_stop_ = internal::Newton_stop::CONVERGED;
-  double last_energy_ = 0;
 };
 
 } // namespace Spherical_parameterization

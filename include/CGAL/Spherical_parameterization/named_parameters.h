@@ -57,7 +57,8 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(d_min_correction)
 /// `Pipeline::ROBUST` (default) or `Pipeline::PAPER`.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(pipeline)
 /// A readable property map `vertex -> Point_3` with the starting map on the unit sphere; it
-/// replaces the built-in initialization (points are normalized, the degree must be +-1).
+/// replaces the built-in initialization (points are normalized; with `Pipeline::ROBUST` its degree
+/// must be 1 relative to the input's orientation, else `INVALID_INITIALIZATION`).
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(initial_sphere_map)
 /// Relative decrease of the energy below which the solver stops; default `1e-8`.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(tolerance)
