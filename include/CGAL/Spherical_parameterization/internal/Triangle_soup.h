@@ -7,7 +7,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace CGAL {
@@ -43,6 +45,15 @@ struct Triangle_soup
 inline Triangle_soup make_triangle_soup(Points points, Faces faces)
 {
   Triangle_soup soup;
+  // First into the unit box, so that areas neither underflow nor overflow (inputs from
+  // 1e-150 to 1e150 in size): input = box_center + box_size * p.
+  Eigen::Vector3d low = points.front(), high = points.front();
+  for(const auto& p : points) { low = low.cwiseMin(p); high = high.cwiseMax(p); }
+  const Eigen::Vector3d box_center = 0.5 * low + 0.5 * high;
+  const double box_size = std::max((0.5 * high - 0.5 * low).maxCoeff(), std::numeric_limits<double>::min());
+  for(auto& p : points)
+    p = (p - box_center) / box_size;
+
   double area = 0;
   Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
   for(const auto& t : faces) {
@@ -50,10 +61,12 @@ inline Triangle_soup make_triangle_soup(Points points, Faces faces)
     area += a;
     weighted += a * (points[t[0]] + points[t[1]] + points[t[2]]) / 3;
   }
-  soup.centroid = weighted / area;
-  soup.scale = std::sqrt(4 * M_PI / area);
+  const Eigen::Vector3d centroid = weighted / area;
+  const double scale = std::sqrt(4 * M_PI / area);
   for(auto& p : points)
-    p = (p - soup.centroid) * soup.scale;
+    p = (p - centroid) * scale;
+  soup.centroid = box_center + box_size * centroid;
+  soup.scale = scale / box_size;
 
   double volume = 0;  // six times the signed volume enclosed by the faces
   for(const auto& t : faces)

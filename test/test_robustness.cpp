@@ -1,0 +1,429 @@
+// Copyright (c) 2026 The CGAL Spherical_parameterization authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Robustness of spherical_parameterize() and Spherical_parameterizer_3 (issue "Bad input,
+// faults and limits"): bit-identical output across runs and concurrency tags, cancellation,
+// time limit, a non-finite initial map, and inputs at the extremes of the double range.
+// Small meshes built in code only, so that it stays fast under AddressSanitizer and
+// UndefinedBehaviorSanitizer (the `fast` CTest label).
+// Usage: test_robustness [ignored arguments]
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+
+// After the mesh headers (see test_parameterizer.cpp).
+#include <CGAL/spherical_parameterize.h>
+#include <CGAL/Spherical_parameterization/Spherical_parameterizer_3.h>
+#include <CGAL/Spherical_parameterization/measure_distortion.h>
+
+#include "test_support.h"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace SP = CGAL::Spherical_parameterization;
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel Epick;
+typedef Epick::Point_3 Point;
+typedef CGAL::Surface_mesh<Point> Mesh;
+typedef Mesh::Vertex_index Vertex;
+typedef Mesh::Property_map<Vertex, Point> Point_map;
+
+using namespace test_support;
+
+namespace {
+
+typedef std::vector<Eigen::Vector3d> Points;
+typedef std::vector<std::array<int, 3>> Triangles;
+
+const double nan = std::numeric_limits<double>::quiet_NaN();
+const double inf = std::numeric_limits<double>::infinity();
+
+double seconds_since(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// ---------------------------------------------------------------------------------------
+// Meshes built in code
+
+/// The icosahedron split `level` times (each triangle into four), points on the unit sphere,
+/// faces counterclockwise seen from outside.
+void subdivided_icosahedron(int level, Points& points, Triangles& triangles)
+{
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  points.clear();
+  for(double a : {-1.0, 1.0})
+    for(double b : {-t, t}) {
+      points.emplace_back(0, a, b);
+      points.emplace_back(a, b, 0);
+      points.emplace_back(b, 0, a);
+    }
+  for(auto& p : points) p.normalize();
+  // The 20 faces: the triples of mutually closest vertices (edge length 2 before scaling).
+  triangles.clear();
+  const double edge = 2 / std::sqrt(1 + t * t);
+  for(int i = 0; i < 12; ++i)
+    for(int j = i + 1; j < 12; ++j)
+      for(int k = j + 1; k < 12; ++k) {
+        auto close = [&](int u, int v) { return std::abs((points[u] - points[v]).norm() - edge) < 1e-9; };
+        if(!close(i, j) || !close(j, k) || !close(k, i)) continue;
+        std::array<int, 3> f = {i, j, k};
+        if(points[i].dot((points[j] - points[i]).cross(points[k] - points[i])) < 0) std::swap(f[1], f[2]);
+        triangles.push_back(f);
+      }
+  for(int l = 0; l < level; ++l) {
+    std::map<std::pair<int, int>, int> middle;
+    auto midpoint = [&](int a, int b) {
+      const std::pair<int, int> key(std::min(a, b), std::max(a, b));
+      const auto found = middle.find(key);
+      if(found != middle.end()) return found->second;
+      points.push_back((points[a] + points[b]).normalized());
+      middle.emplace(key, int(points.size()) - 1);
+      return int(points.size()) - 1;
+    };
+    Triangles finer;
+    for(const auto& f : triangles) {
+      const int ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+      finer.push_back({f[0], ab, ca});
+      finer.push_back({f[1], bc, ab});
+      finer.push_back({f[2], ca, bc});
+      finer.push_back({ab, bc, ca});
+    }
+    triangles.swap(finer);
+  }
+}
+
+Mesh make_mesh(const Points& points, const Triangles& triangles)
+{
+  Mesh mesh;
+  std::vector<Vertex> v;
+  for(const auto& p : points) v.push_back(mesh.add_vertex(Point(p.x(), p.y(), p.z())));
+  for(const auto& f : triangles) mesh.add_face(v[f[0]], v[f[1]], v[f[2]]);
+  return mesh;
+}
+
+/// A bumpy ellipsoid: star-shaped about the origin, so the central projection is fold-free
+/// and the solver goes straight to the target energy, which takes several iterations.
+Mesh bumpy_ellipsoid(int level)
+{
+  Points points;
+  Triangles triangles;
+  subdivided_icosahedron(level, points, triangles);
+  for(auto& p : points) {
+    const double r = 1 + 0.2 * std::sin(4 * p.x() + 1) * std::cos(3 * p.y()) + 0.08 * std::cos(6 * p.z());
+    p = Eigen::Vector3d(2.5 * r * p.x(), 1.2 * r * p.y(), 0.8 * r * p.z());
+  }
+  return make_mesh(points, triangles);
+}
+
+/// A long ellipsoid bent into a C: star-shaped about no point, so every central projection
+/// folds and the robust pipeline starts with Tutte's energy from an invalid map.
+Mesh bent_tube(int level)
+{
+  Points points;
+  Triangles triangles;
+  subdivided_icosahedron(level, points, triangles);
+  const double radius = 1.5;  // of the bend; the tube is 8 long, so it turns by +-153 degrees
+  for(auto& p : points) {
+    const double x = 4 * p.x(), y = 0.5 * p.y(), z = 0.5 * p.z();
+    const double angle = x / radius;
+    p = Eigen::Vector3d((radius - y) * std::sin(angle), radius - (radius - y) * std::cos(angle), z);
+  }
+  return make_mesh(points, triangles);
+}
+
+/// The same mesh (same vertex indices) with every point sent through `f`.
+Mesh transformed(const Mesh& mesh, const std::function<Point(const Point&)>& f)
+{
+  Mesh copy = mesh;
+  for(Vertex v : copy.vertices()) copy.point(v) = f(mesh.point(v));
+  return copy;
+}
+
+// ---------------------------------------------------------------------------------------
+// Reading maps
+
+const Point sentinel(-7.25, 3.5, 11.0);
+
+Point_map new_map(Mesh& mesh, const std::string& name)
+{
+  return mesh.add_property_map<Vertex, Point>(name, sentinel).first;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
+
+bool same_bits(const Point& a, const Point& b)
+{
+  return same_bits(a.x(), b.x()) && same_bits(a.y(), b.y()) && same_bits(a.z(), b.z());
+}
+
+/// Number of vertices whose points differ in at least one bit between the two maps.
+std::size_t differing_points(const Mesh& mesh, Point_map a, Point_map b)
+{
+  std::size_t n = 0;
+  for(Vertex v : mesh.vertices())
+    if(!same_bits(a[v], b[v])) ++n;
+  return n;
+}
+
+bool untouched(const Mesh& mesh, Point_map map)
+{
+  for(Vertex v : mesh.vertices())
+    if(!same_bits(map[v], sentinel)) return false;
+  return true;
+}
+
+/// Max over vertices of | |x| - 1 |; infinite if a coordinate is not finite.
+double max_norm_error(const Mesh& mesh, Point_map map)
+{
+  double worst = 0;
+  for(Vertex v : mesh.vertices()) {
+    const Point& p = map[v];
+    if(!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) return inf;
+    worst = std::max(worst, std::abs(std::sqrt(p.x() * p.x() + p.y() * p.y() + p.z() * p.z()) - 1));
+  }
+  return worst;
+}
+
+bool same_result(const SP::Result& a, const SP::Result& b)
+{
+  return a.status == b.status && a.valid == b.valid && a.iterations == b.iterations && same_bits(a.energy, b.energy) &&
+         a.flipped == b.flipped && a.degenerate == b.degenerate && same_bits(a.degree, b.degree) &&
+         same_bits(a.min_area_ratio, b.min_area_ratio) && a.stages == b.stages;
+}
+
+std::string describe(const SP::Result& r)
+{
+  std::string s = std::string(r.message()) + (r.detail.empty() ? "" : " (" + r.detail + ")");
+  return s + ", " + std::to_string(r.iterations) + " iterations [" + r.stages + "], valid " + std::to_string(r.valid);
+}
+
+/// The codes detected before any solve, which leave the output map untouched.
+bool is_input_error(SP::Error_code c)
+{
+  return c != SP::Error_code::OK && c <= SP::Error_code::INVALID_INITIALIZATION;
+}
+
+// ---------------------------------------------------------------------------------------
+// Determinism
+
+template <class ConcurrencyTag>
+SP::Result solve_with_class(const Mesh& mesh, Point_map map)
+{
+  SP::Spherical_parameterizer_3<Mesh, SP::Combined_energy, CGAL::Default, SP::Default_sparse_solver_traits,
+                                ConcurrencyTag>
+    parameterizer;
+  const SP::Error_code code = parameterizer.precompute(mesh);
+  if(code != SP::Error_code::OK) {
+    SP::Result r;
+    r.status = code;
+    r.detail = parameterizer.input_detail();
+    return r;
+  }
+  return parameterizer.solve(map);
+}
+
+void test_determinism()
+{
+  const auto start = std::chrono::steady_clock::now();
+  // Level 3: 1280 faces, more than two of parallel_for's 512-face chunks.
+  Mesh mesh = bumpy_ellipsoid(3);
+  const std::string name = "[bumpy ellipsoid, 1280 faces]";
+
+  Point_map first = new_map(mesh, "v:first"), second = new_map(mesh, "v:second");
+  const SP::Result r1 = CGAL::spherical_parameterize(mesh, first);
+  const SP::Result r2 = CGAL::spherical_parameterize(mesh, second);
+  std::cerr << name << " sequential: " << describe(r1) << std::endl;
+  report(name + ": sequential solve gives a valid map", r1.valid, describe(r1));
+  const std::size_t d12 = differing_points(mesh, first, second);
+  report(name + ": Sequential_tag twice: bit-identical points and Result", d12 == 0 && same_result(r1, r2),
+         std::to_string(d12) + " points differ");
+
+  Point_map class_map = new_map(mesh, "v:class");
+  const SP::Result rc = solve_with_class<CGAL::Sequential_tag>(mesh, class_map);
+  const std::size_t d1c = differing_points(mesh, first, class_map);
+  report(name + ": spherical_parameterize and Spherical_parameterizer_3<Sequential_tag> bit-identical",
+         d1c == 0 && same_result(r1, rc), std::to_string(d1c) + " points differ");
+
+#ifdef CGAL_LINKED_WITH_TBB
+  Point_map p1 = new_map(mesh, "v:parallel1"), p2 = new_map(mesh, "v:parallel2");
+  const SP::Result q1 = solve_with_class<CGAL::Parallel_tag>(mesh, p1);
+  const SP::Result q2 = solve_with_class<CGAL::Parallel_tag>(mesh, p2);
+  std::cerr << name << " parallel: " << describe(q1) << std::endl;
+  const std::size_t dq = differing_points(mesh, p1, p2);
+  report(name + ": Parallel_tag twice: bit-identical points and Result", dq == 0 && same_result(q1, q2),
+         std::to_string(dq) + " points differ");
+  const std::size_t dsq = differing_points(mesh, first, p1);
+  report(name + ": Sequential_tag and Parallel_tag bit-identical", dsq == 0 && same_result(r1, q1),
+         std::to_string(dsq) + " points differ; sequential " + describe(r1) + "; parallel " + describe(q1));
+#else
+  skip(name + ": Parallel_tag determinism", "built without TBB (CGAL_LINKED_WITH_TBB undefined)");
+#endif
+  std::cerr << "time determinism: " << seconds_since(start) << " s" << std::endl;
+}
+
+// ---------------------------------------------------------------------------------------
+// Cancellation and time limit
+
+void test_cancellation(Mesh mesh, const std::string& mesh_name, SP::Pipeline pipeline)
+{
+  const std::string name = "[" + mesh_name + (pipeline == SP::Pipeline::PAPER ? ", PAPER" : ", ROBUST") +
+                           ", visitor returns false at its first call]";
+  std::size_t calls = 0;
+  auto cancel = [&calls](const SP::Progress&) {
+    ++calls;
+    return false;
+  };
+  Point_map map = new_map(mesh, "v:cancel");
+  const SP::Result r =
+    CGAL::spherical_parameterize(mesh, map, SP::parameters::pipeline(pipeline).visitor(cancel));
+  std::cerr << name << ": " << describe(r) << std::endl;
+  report(name + ": status CANCELLED", r.status == SP::Error_code::CANCELLED, describe(r));
+  report(name + ": returns within 1 iteration and 1 visitor call", r.iterations <= 1 && calls <= 1,
+         std::to_string(r.iterations) + " iterations, " + std::to_string(calls) + " calls");
+  report(name + ": the map is written, every point finite", max_norm_error(mesh, map) < inf);
+  const SP::Distortion_report d = SP::measure_distortion(mesh, map);
+  report(name + ": Result.valid (" + std::to_string(r.valid) + ") matches measure_distortion", r.valid == d.is_valid(),
+         "measured valid " + std::to_string(d.is_valid()) + ", " + std::to_string(d.flipped) + " flipped, " +
+           std::to_string(d.degenerate) + " degenerate, degree " + str(d.degree));
+}
+
+void test_time_limit(Mesh mesh, const std::string& mesh_name)
+{
+  const std::string name = "[" + mesh_name + ", maximum_running_time(1e-6)]";
+  Point_map map = new_map(mesh, "v:time");
+  const auto start = std::chrono::steady_clock::now();
+  const SP::Result r = CGAL::spherical_parameterize(mesh, map, CGAL::parameters::maximum_running_time(1e-6));
+  const double wall = seconds_since(start);
+  std::cerr << name << ": " << describe(r) << ", " << wall << " s" << std::endl;
+  report(name + ": status TIME_LIMIT", r.status == SP::Error_code::TIME_LIMIT, describe(r));
+  report(name + ": promptly (at most 1 iteration, under 2 s)", r.iterations <= 1 && wall < 2,
+         std::to_string(r.iterations) + " iterations, " + str(wall) + " s");
+  const SP::Distortion_report d = SP::measure_distortion(mesh, map);
+  report(name + ": Result.valid (" + std::to_string(r.valid) + ") matches measure_distortion", r.valid == d.is_valid(),
+         "measured valid " + std::to_string(d.is_valid()));
+}
+
+// ---------------------------------------------------------------------------------------
+// Non-finite initial map
+
+void test_non_finite_start()
+{
+  Mesh mesh = bumpy_ellipsoid(2);
+  // The radial projection of a mesh star-shaped about the origin: a valid start.
+  Point_map start = new_map(mesh, "v:start");
+  for(Vertex v : mesh.vertices()) {
+    const Point& p = mesh.point(v);
+    const double n = std::sqrt(p.x() * p.x() + p.y() * p.y() + p.z() * p.z());
+    start[v] = Point(p.x() / n, p.y() / n, p.z() / n);
+  }
+  Point_map out = new_map(mesh, "v:out");
+  const SP::Result ok = CGAL::spherical_parameterize(mesh, out, SP::parameters::initial_sphere_map(start));
+  report("[initial_sphere_map, radial projection]: accepted, valid map (the control)", ok.valid, describe(ok));
+
+  const Vertex victim(7);
+  const std::pair<const char*, Point> bad[] = {{"NaN x", Point(nan, 0, 1)},
+                                               {"NaN in all coordinates", Point(nan, nan, nan)},
+                                               {"infinite z", Point(0, 0, inf)},
+                                               {"zero point", Point(0, 0, 0)}};
+  for(const auto& [what, point] : bad) {
+    const std::string name = std::string("[initial_sphere_map with a ") + what + " at vertex 7]";
+    const Point saved = start[victim];
+    start[victim] = point;
+    Point_map untouched_map = new_map(mesh, "v:untouched");
+    const SP::Result r = CGAL::spherical_parameterize(mesh, untouched_map, SP::parameters::initial_sphere_map(start));
+    report(name + ": status INVALID_INITIALIZATION with a detail",
+           r.status == SP::Error_code::INVALID_INITIALIZATION && !r.detail.empty(), describe(r));
+    report(name + ": output map untouched", untouched(mesh, untouched_map));
+    start[victim] = saved;
+    mesh.remove_property_map(untouched_map);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Numeric extremes
+
+/// Never a crash, a hang, a NaN or a touched output on error; then, ideally, a valid map or an
+/// input error that names the input's problem.
+void test_extreme(const Mesh& base, const std::string& what, const std::function<Point(const Point&)>& f)
+{
+  const std::string name = "[bumpy ellipsoid " + what + "]";
+  Mesh mesh = transformed(base, f);
+  Point_map out = new_map(mesh, "v:extreme");
+  const auto start = std::chrono::steady_clock::now();
+  // A generous limit turns a hang into a TIME_LIMIT, reported as a failure below.
+  const SP::Result r = CGAL::spherical_parameterize(mesh, out, CGAL::parameters::maximum_running_time(60));
+  const double wall = seconds_since(start);
+  const double norm_error = max_norm_error(mesh, out);
+  std::cerr << name << ": " << describe(r) << ", " << wall << " s, max | |x| - 1 | " << norm_error << std::endl;
+
+  report(name + ": no hang (returns before the 60 s limit)", r.status != SP::Error_code::TIME_LIMIT, describe(r));
+  if(is_input_error(r.status)) {
+    report(name + ": an error before solving has a detail and leaves the output map untouched",
+           !r.detail.empty() && untouched(mesh, out), describe(r));
+    report(name + ": the error is an input error (check_input), not a failed initialization",
+                    r.status < SP::Error_code::INVALID_PARAMETER, describe(r));
+    return;
+  }
+  report(name + ": no NaN or infinity in the output", norm_error < inf, describe(r));
+  // Judged on the untransformed points (same vertex indices): measure_distortion() scales its
+  // input like the solver does, so it would share any overflow of the transformed points.
+  const SP::Distortion_report d =
+    SP::measure_distortion(mesh, out, CGAL::parameters::vertex_point_map(base.points()));
+  report(name + ": valid map (status OK or NOT_CONVERGED, measure_distortion agrees)",
+                  (r.status == SP::Error_code::OK || r.status == SP::Error_code::NOT_CONVERGED) && r.valid &&
+                    d.is_valid(),
+                  describe(r) + "; measured valid " + std::to_string(d.is_valid()) + ", " +
+                    std::to_string(d.flipped) + " flipped, " + std::to_string(d.degenerate) + " degenerate");
+}
+
+void test_extremes()
+{
+  const auto start = std::chrono::steady_clock::now();
+  const Mesh base = bumpy_ellipsoid(2);
+  test_extreme(base, "scaled by 1e-150", [](const Point& p) { return Point(p.x() * 1e-150, p.y() * 1e-150, p.z() * 1e-150); });
+  test_extreme(base, "scaled by 1e140", [](const Point& p) { return Point(p.x() * 1e140, p.y() * 1e140, p.z() * 1e140); });
+  test_extreme(base, "translated by 1e12",
+               [](const Point& p) { return Point(p.x() + 1e12, p.y() - 1e12, p.z() + 1e12); });
+  std::cerr << "time extremes: " << seconds_since(start) << " s" << std::endl;
+}
+
+} // namespace
+
+int main()
+{
+  rng.seed(2026);
+  const auto start = std::chrono::steady_clock::now();
+
+  test_determinism();
+
+  const auto interruptions = std::chrono::steady_clock::now();
+  // Cancelled in the target stage after a fold-free start (valid map), in the Tutte stage
+  // from a folded one, and in the PAPER pipeline from a folded one (no valid map met).
+  test_cancellation(bumpy_ellipsoid(2), "bumpy ellipsoid", SP::Pipeline::ROBUST);
+  test_cancellation(bent_tube(2), "C-shaped tube", SP::Pipeline::ROBUST);
+  test_cancellation(bent_tube(2), "C-shaped tube", SP::Pipeline::PAPER);
+  test_time_limit(bumpy_ellipsoid(2), "bumpy ellipsoid");
+  test_time_limit(bent_tube(2), "C-shaped tube");
+  std::cerr << "time interruptions: " << seconds_since(interruptions) << " s" << std::endl;
+
+  test_non_finite_start();
+  test_extremes();
+
+  std::cerr << "time total: " << seconds_since(start) << " s" << std::endl;
+  std::cout << passed << " passed, " << failed << " failed" << std::endl;
+  return failed == 0 ? 0 : 1;
+}
