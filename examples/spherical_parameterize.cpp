@@ -122,11 +122,18 @@ Mesh read_mesh(const std::string& path)
   if(ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl")
     fail("cannot read " + path + ": unknown extension (use .off, .obj, .ply or .stl)");
   Mesh mesh;
-  if(CGAL::IO::read_polygon_mesh(path, mesh, CGAL::parameters::verbose(false)))
-    return mesh;
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
-  if(CGAL::IO::read_polygon_soup(path, points, polygons) && !polygons.empty())
+  bool is_soup = false;
+  try {
+    if(CGAL::IO::read_polygon_mesh(path, mesh, CGAL::parameters::verbose(false)))
+      return mesh;
+    is_soup = CGAL::IO::read_polygon_soup(path, points, polygons) && !polygons.empty();
+  } catch(const std::exception& e) {
+    // CGAL's readers throw (bad_alloc, length_error) on absurd counts in a corrupted header.
+    fail("cannot read " + path + ": not a valid mesh file (" + e.what() + ")");
+  }
+  if(is_soup)
     fail("cannot read " + path + " as a surface: its " + std::to_string(polygons.size()) +
          " faces do not form an oriented 2-manifold (non-manifold vertices or edges, or inconsistent orientation)");
   fail("cannot read " + path + ": not a valid mesh file");
