@@ -25,7 +25,7 @@ namespace CGAL {
 ///   \cgalParamNBegin{pipeline} `Pipeline::ROBUST` (default) or `Pipeline::PAPER` \cgalParamNEnd
 ///   \cgalParamNBegin{initial_sphere_map} a readable map `vertex -> Point_3` to start from \cgalParamNEnd
 ///   \cgalParamNBegin{d_min_correction} default `true` \cgalParamNEnd
-///   \cgalParamNBegin{tolerance} default `1e-8` \cgalParamNEnd
+///   \cgalParamNBegin{tolerance} default `1e-6` \cgalParamNEnd
 ///   \cgalParamNBegin{vertex_point_map} the input positions; default `get(CGAL::vertex_point, tm)` \cgalParamNEnd
 ///   \cgalParamNBegin{number_of_iterations} cap per stage; default 200 \cgalParamNEnd
 ///   \cgalParamNBegin{maximum_running_time} seconds; default unlimited \cgalParamNEnd

@@ -11,13 +11,14 @@
 #include <CGAL/Spherical_parameterization/Sparse_solver_traits.h>
 #include <CGAL/Spherical_parameterization/Weighted_sum_energy.h>
 #include <CGAL/Spherical_parameterization/named_parameters.h>
-#include <CGAL/Spherical_parameterization/internal/Fold_barrier.h>
 #include <CGAL/Spherical_parameterization/internal/Newton_solver.h>
+#include <CGAL/Spherical_parameterization/internal/Progressive_mesh.h>
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
 #include <CGAL/Spherical_parameterization/internal/Untangling_energy.h>
 #include <CGAL/Spherical_parameterization/internal/check_input.h>
 #include <CGAL/Spherical_parameterization/internal/initialization.h>
+#include <CGAL/Spherical_parameterization/internal/kernel_placement.h>
 #include <CGAL/Spherical_parameterization/internal/map_validity.h>
 
 #include <CGAL/Default.h>
@@ -86,7 +87,8 @@ public:
     using CGAL::parameters::get_parameter;
     const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                       get_const_property_map(CGAL::vertex_point, tm));
-    solver_.reset();
+    input_ = Level();
+    hierarchy_.reset();
     last_map_.clear();
     const internal::Input_report report = internal::check_input(tm, vpm);
     input_detail_ = report.detail;
@@ -111,8 +113,8 @@ public:
         t[k++] = index.at(v);
       triangles.push_back(t);
     }
-    soup_ = internal::make_triangle_soup(std::move(points), std::move(triangles));
-    solver_ = std::make_unique<Newton>(soup_.faces, soup_.number_of_vertices());
+    input_.soup = internal::make_triangle_soup(std::move(points), std::move(triangles));
+    input_.solver = std::make_unique<Newton>(input_.soup);
     return Error_code::OK;
   }
 
@@ -129,7 +131,7 @@ public:
   ///     the paper pipeline takes it as it is \cgalParamNEnd
   ///   \cgalParamNBegin{d_min_correction} default `true` \cgalParamNEnd
   ///   \cgalParamNBegin{number_of_iterations} cap on Newton iterations per stage; default 200 \cgalParamNEnd
-  ///   \cgalParamNBegin{tolerance} relative energy decrease at which to stop; default 1e-8 \cgalParamNEnd
+  ///   \cgalParamNBegin{tolerance} relative energy decrease at which to stop; default 1e-6 \cgalParamNEnd
   ///   \cgalParamNBegin{maximum_running_time} seconds; default unlimited \cgalParamNEnd
   ///   \cgalParamNBegin{visitor} called after each iteration with a `Progress`; returns
   ///     `false` to cancel \cgalParamNEnd
@@ -140,7 +142,7 @@ public:
     using CGAL::parameters::choose_parameter;
     using CGAL::parameters::get_parameter;
     Result result;
-    if(!solver_) {
+    if(!input_.solver) {
       result.status = Error_code::EMPTY_MESH;
       result.detail = "precompute() was not called or failed";
       return result;
@@ -152,7 +154,7 @@ public:
       run.options.deadline = run.options.start + std::chrono::duration_cast<internal::Clock::duration>(
                                                    std::chrono::duration<double>(max_seconds));
     const long long max_iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 200);
-    run.options.tolerance = choose_parameter(get_parameter(np, internal_np::tolerance_t()), 1e-8);
+    run.options.tolerance = choose_parameter(get_parameter(np, internal_np::tolerance_t()), 1e-6);
     run.correction = choose_parameter(get_parameter(np, internal_np::d_min_correction_t()), true);
     run.pipeline = choose_parameter(get_parameter(np, internal_np::pipeline_t()), Pipeline::ROBUST);
     if(!(run.options.tolerance >= 0) || max_iterations <= 0 || !(max_seconds >= 0)) {
@@ -166,7 +168,11 @@ public:
     if(!initial_map(np, run, x, result))
       return result;
     auto visitor = choose_parameter(get_parameter(np, CGAL::internal_np::visitor), Default_visitor());
-    run_pipeline(run, x, visitor);
+    if(!run_pipeline(run, x, visitor)) {
+      result.status = Error_code::INVALID_INITIALIZATION;
+      result.detail = "no point inside the mesh found to centre the central projection";
+      return result;
+    }
     finish(run, x, result);
     write_map(sphere_map, x);
     last_map_ = x;
@@ -193,14 +199,27 @@ private:
     else return Energy();
   }
 
-  // The start: the user's map, the last map (re-solve), or the central projection.
+  // A mesh the solver runs on: the input, or a coarse level of its progressive mesh.
+  struct Level
+  {
+    internal::Triangle_soup soup;
+    std::vector<int> to_input;  // the input vertex of each level vertex; empty for the input itself
+    std::unique_ptr<Newton> solver;
+
+    std::size_t number_of_vertices() const { return soup.number_of_vertices(); }
+    bool has_fold(const internal::Points& x) const { return internal::count_bad_faces(soup.faces, x) > 0; }
+  };
+
+  // The start: the user's map or the last map (re-solve), or for the paper's pipeline its
+  // central projection. Empty `x` (robust pipeline from scratch): the coarse-to-fine solve
+  // makes its own start.
   template <class NamedParameters>
-  bool initial_map(const NamedParameters& np, Run& run, internal::Points& x, Result& result)
+  bool initial_map(const NamedParameters& np, const Run& run, internal::Points& x, Result& result)
   {
     using CGAL::parameters::get_parameter;
     const auto user_map = get_parameter(np, internal_np::initial_sphere_map_t());
+    x.clear();
     if constexpr(!std::is_same<std::decay_t<decltype(user_map)>, CGAL::internal_np::Param_not_found>::value) {
-      x.clear();
       for(vertex_descriptor v : vertices_) {
         const auto& p = get(user_map, v);
         x.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
@@ -213,21 +232,19 @@ private:
       }
     } else if(!last_map_.empty()) {
       x = last_map_;
-    } else {
-      std::optional<Eigen::Vector3d> center = Eigen::Vector3d::Zero();  // the area centroid
-      if(run.pipeline == Pipeline::ROBUST)
-        center = internal::interior_center(soup_);
-      std::optional<internal::Points> start;
-      if(center)
-        start = internal::central_projection(soup_.points, *center);
+    } else if(run.pipeline == Pipeline::PAPER) {
+      // The paper's start: central projection about the area centroid, the soup's origin.
+      std::optional<internal::Points> start = internal::central_projection(input_.soup.points, Eigen::Vector3d::Zero());
       if(!start) {
         result.status = Error_code::INVALID_INITIALIZATION;
-        result.detail = "no centre for the central projection";
+        result.detail = "a vertex lies at the centroid, the centre of the central projection";
         return false;
       }
       x = std::move(*start);
+    } else {
+      return true;
     }
-    const double degree = internal::check_map(soup_.faces, x).degree;
+    const double degree = internal::check_map(input_.soup.faces, x).degree;
     if(std::abs(degree - 1) > 1e-6 && run.pipeline == Pipeline::ROBUST) {
       result.status = Error_code::INVALID_INITIALIZATION;
       result.detail = "the initial map has degree " + std::to_string(degree) + ", not 1";
@@ -236,42 +253,75 @@ private:
     return true;
   }
 
+  // False if no start was found (robust pipeline from scratch).
   template <class Visitor>
-  void run_pipeline(Run& run, internal::Points& x, Visitor& visitor)
+  bool run_pipeline(Run& run, internal::Points& x, Visitor& visitor)
   {
-    if(run.pipeline == Pipeline::PAPER) {
-      minimize(energy_, "target", false, run, x, visitor);
-      return;
+    if(run.pipeline == Pipeline::PAPER)
+      minimize(energy_, "target", false, run, input_, x, visitor);
+    else if(x.empty())
+      return solve_coarse_to_fine(run, x, visitor);
+    else
+      robust_stages(run, input_, x, visitor);
+    return true;
+  }
+
+  // From a start of degree 1 on `level`: Tutte with the d_min barrier while faces are folded
+  // (robust, and fold-free on most meshes), untangling if that is not enough, then the
+  // user's energy without ever letting a face flip. False if interrupted.
+  template <class Visitor>
+  bool robust_stages(Run& run, Level& level, internal::Points& x, Visitor& visitor)
+  {
+    if(level.has_fold(x) && !minimize(Tutte_energy(), "tutte", false, run, level, x, visitor, true))
+      return false;
+    if(level.has_fold(x) && !untangle(run, level, x, visitor))
+      return false;
+    if(level.has_fold(x))  // no fold-free map found: plain minimization
+      return minimize(energy_, "target", false, run, level, x, visitor);
+    return minimize_fold_free(run, level, x, visitor, "target");
+  }
+
+  // The user's energy from a fold-free map. First alone, as in the paper: on most meshes its
+  // minimum is fold-free and Newton with the exact Hessian converges in a few iterations,
+  // passing through folds on its way at times. If it ends folded or with a face squeezed
+  // under the floor (protrusions, where the energy's infimum is degenerate), the fold-free
+  // stage takes over from the last fold-free iterate: steps that never cross det = 0 and a
+  // barrier on the faces squeezed under the floor (internal::Fold_barrier). Barrier and
+  // step cap from the start were measured to triple bunny00's iterations: both slow Newton
+  // where they are not needed.
+  template <class Visitor>
+  bool minimize_fold_free(Run& run, Level& level, internal::Points& x, Visitor& visitor, const char* stage)
+  {
+    if(&level == &input_)
+      run.best_valid = x;
+    internal::Points fold_free;
+    run.options.fold_free_iterate = &fold_free;
+    const bool uninterrupted = minimize(energy_, stage, false, run, level, x, visitor);
+    run.options.fold_free_iterate = nullptr;
+    const bool folded = level.has_fold(x);
+    if(!uninterrupted || (!folded && last_level_stop_ != internal::Newton_stop::FOLDED &&
+                          level.solver->is_above_floor(x, run.options.fold_floor))) {
+      if(folded)  // interrupted on the way: the last fold-free iterate is the result
+        x = std::move(fold_free);
+      return uninterrupted;
     }
-    // Tutte with the d_min barrier first: robust, and fold-free on most meshes.
-    if(internal::count_bad_faces(soup_.faces, x) > 0 && !minimize(Tutte_energy(), "tutte", false, run, x, visitor, true))
-      return;
-    if(internal::count_bad_faces(soup_.faces, x) > 0 && !untangle(run, x, visitor))
-      return;
-    if(internal::count_bad_faces(soup_.faces, x) > 0) {
-      minimize(energy_, "target", false, run, x, visitor);  // no fold-free map found: plain minimization
-      return;
-    }
-    run.best_valid = x;
-    // The user's energy, with a barrier on the few faces squeezed below the activation
-    // area ratio, and steps that never cross det = 0.
-    const Weighted_sum<Energy, internal::Fold_barrier> guarded({1.0, 1.0}, energy_, internal::Fold_barrier());
-    minimize(guarded, "target", true, run, x, visitor);
+    x = std::move(fold_free);
+    return minimize(energy_, stage, true, run, level, x, visitor);
   }
 
   // Garanzha et al.'s continuation: unfold with a finite energy, then tighten the barrier.
   // Rounds of at most 20 iterations: converging each round to the tolerance wasted most of
   // the work (bull: 221 untangling iterations against 59).
   template <class Visitor>
-  bool untangle(Run& run, internal::Points& x, Visitor& visitor)
+  bool untangle(Run& run, Level& level, internal::Points& x, Visitor& visitor)
   {
     internal::Untangling_energy untangling;
     const std::size_t max_iterations = run.options.max_iterations;
     run.options.max_iterations = std::min<std::size_t>(max_iterations, 20);
     bool uninterrupted = true;
     for(int round = 0; round < 40 && uninterrupted; ++round) {
-      uninterrupted = minimize(untangling, "untangle", false, run, x, visitor, true);
-      if(internal::count_bad_faces(soup_.faces, x) == 0)
+      uninterrupted = minimize(untangling, "untangle", false, run, level, x, visitor, true);
+      if(!level.has_fold(x))
         break;
       untangling.epsilon = std::max(untangling.epsilon / 10, 1e-12);
     }
@@ -279,20 +329,144 @@ private:
     return uninterrupted;
   }
 
+  // Coarse to fine: the robust stages on the coarsest mesh of a progressive mesh of the
+  // input, then back to the input a level at a time, every vertex split placing the new
+  // vertex inside the kernel of its fan (so the map stays fold-free) and every level
+  // minimizing the user's energy for a few iterations. Only the input level runs to the
+  // tolerance. See doc/NOTES.md for the measurements behind the sizes.
+  template <class Visitor>
+  bool solve_coarse_to_fine(Run& run, internal::Points& x, Visitor& visitor)
+  {
+    const bool small = input_.number_of_vertices() <= 2 * coarse_vertices;  // no gain in a hierarchy
+    const internal::Progressive_mesh& pm = hierarchy(small ? input_.number_of_vertices() : coarse_vertices);
+    internal::Refinement refinement(pm);
+    std::unique_ptr<Level> level = pm.splits().empty() ? nullptr : make_level(refinement);
+    internal::Points level_x;
+    if(!level || !coarse_start(*level, level_x)) {  // the input itself, from its own central projection
+      if(!coarse_start(input_, x))
+        return false;
+      robust_stages(run, input_, x, visitor);
+      return true;
+    }
+    x.assign(input_.number_of_vertices(), Eigen::Vector3d::Zero());
+    run.stages += "coarse " + std::to_string(level->number_of_vertices()) + "v:";
+    bool uninterrupted = robust_stages(run, *level, level_x, visitor);
+    scatter(*level, level_x, x);
+
+    internal::Fan fan;
+    std::size_t stuck = 0;  // splits whose fan had an empty kernel
+    const std::vector<std::size_t> sizes = level_sizes(refinement.number_of_vertices());
+    for(std::size_t k = 0; k < sizes.size(); ++k) {
+      while(refinement.number_of_vertices() < sizes[k]) {
+        const internal::Vertex_split& split = refinement.split_next();
+        refinement.fan(split, fan);
+        x[split.removed] = internal::place_in_kernel(x, fan, internal::mean_value_point(split.removed, input_.soup.points, x, fan));
+        stuck += !(internal::fan_clearance(x[split.removed], x, fan) > 0);
+      }
+      if(!uninterrupted)
+        continue;  // only insertions: a valid map of the input, fast
+      const bool is_input = refinement.splits_left() == 0;
+      if(!is_input)
+        level = make_level(refinement);
+      Level& current = is_input ? input_ : *level;
+      if(!is_input)
+        gather(current, x, level_x);
+      internal::Points& y = is_input ? x : level_x;
+      run.stages += std::string(" | ") + (is_input ? "input " : "") + std::to_string(current.number_of_vertices()) + "v:";
+      uninterrupted = current.has_fold(y) ? robust_stages(run, current, y, visitor)
+                                          : minimize_level(run, current, y, visitor, is_input);
+      if(!is_input)
+        scatter(current, y, x);
+    }
+    if(stuck > 0)
+      run.stages += " (" + std::to_string(stuck) + " empty kernels)";
+    return true;
+  }
+
+  // The refinement levels after the coarsest: sizes growing by a constant ratio to the input.
+  std::vector<std::size_t> level_sizes(std::size_t coarse_vertices) const
+  {
+    const std::size_t n = input_.number_of_vertices();
+    std::vector<std::size_t> sizes;
+    for(double size = double(coarse_vertices) * level_ratio; size * std::sqrt(level_ratio) < double(n); size *= level_ratio)
+      sizes.push_back(std::size_t(size));
+    sizes.push_back(n);
+    return sizes;
+  }
+
+  // An intermediate level: the user's energy to a loose tolerance, a few iterations.
+  template <class Visitor>
+  bool minimize_level(Run& run, Level& level, internal::Points& x, Visitor& visitor, bool is_input)
+  {
+    if(is_input)
+      return minimize_fold_free(run, level, x, visitor, "target");
+    const internal::Newton_options saved = run.options;
+    run.options.max_iterations = std::min<std::size_t>(run.options.max_iterations, level_iterations);
+    run.options.tolerance = std::max(run.options.tolerance, level_tolerance);
+    const bool uninterrupted = minimize_fold_free(run, level, x, visitor, "refine");
+    run.options.max_iterations = saved.max_iterations;
+    run.options.tolerance = saved.tolerance;
+    return uninterrupted;
+  }
+
+  // The central projection of the coarse level about a point inside it.
+  bool coarse_start(const Level& level, internal::Points& x) const
+  {
+    const std::optional<Eigen::Vector3d> center = internal::interior_center(level.soup);
+    std::optional<internal::Points> start;
+    if(center)
+      start = internal::central_projection(level.soup.points, *center);
+    if(!start || std::abs(internal::check_map(level.soup.faces, *start).degree - 1) > 1e-6)
+      return false;
+    x = std::move(*start);
+    return true;
+  }
+
+  const internal::Progressive_mesh& hierarchy(std::size_t target_vertices)
+  {
+    if(!hierarchy_)
+      hierarchy_ = std::make_unique<internal::Progressive_mesh>(input_.soup, target_vertices);
+    return *hierarchy_;
+  }
+
+  std::unique_ptr<Level> make_level(const internal::Refinement& refinement) const
+  {
+    auto level = std::make_unique<Level>();
+    level->soup = internal::level_soup(input_.soup, refinement, level->to_input);
+    level->solver = std::make_unique<Newton>(level->soup);
+    return level;
+  }
+
+  static void gather(const Level& level, const internal::Points& x, internal::Points& level_x)
+  {
+    level_x.resize(level.to_input.size());
+    for(std::size_t i = 0; i < level.to_input.size(); ++i)
+      level_x[i] = x[level.to_input[i]];
+  }
+
+  static void scatter(const Level& level, const internal::Points& level_x, internal::Points& x)
+  {
+    for(std::size_t i = 0; i < level.to_input.size(); ++i)
+      x[level.to_input[i]] = level_x[i];
+  }
+
   // One Newton stage; false if the run was interrupted.
   template <class StageEnergy, class Visitor>
-  bool minimize(const StageEnergy& energy, const char* stage, bool keep_fold_free, Run& run,
+  bool minimize(const StageEnergy& energy, const char* stage, bool keep_fold_free, Run& run, Level& level,
                 internal::Points& x, Visitor& visitor, bool stop_when_fold_free = false)
   {
     run.options.stop_when_fold_free = stop_when_fold_free;
-    const internal::Spherical_energy<StageEnergy> spherical(soup_, energy, run.correction);
+    const internal::Spherical_energy<StageEnergy> spherical(level.soup, energy, run.correction);
     run.options.stage = stage;
     run.options.keep_fold_free = keep_fold_free;
     run.options.iteration_offset = run.iterations;
-    const internal::Newton_outcome out = solver_->minimize(spherical, x, run.options, visitor);
+    const internal::Newton_outcome out = level.solver->minimize(spherical, x, run.options, visitor);
     run.iterations += out.iterations;
-    run.stages += std::string(run.stages.empty() ? "" : " ") + stage + ":" + std::to_string(out.iterations);
-    last_stop_ = out.stop;
+    run.stages += std::string(run.stages.empty() || run.stages.back() == ':' ? "" : " ") + stage + ":" +
+                  std::to_string(out.iterations);
+    last_level_stop_ = out.stop;
+    if(&level == &input_)
+      last_stop_ = out.stop;
     if(out.stop == internal::Newton_stop::CANCELLED || out.stop == internal::Newton_stop::TIME_LIMIT) {
       run.interrupted = out.stop;
       return false;
@@ -302,19 +476,19 @@ private:
 
   void finish(Run& run, internal::Points& x, Result& result)
   {
-    internal::Map_validity validity = internal::check_map(soup_.faces, x);
+    internal::Map_validity validity = internal::check_map(input_.soup.faces, x);
     if(run.interrupted && !validity.is_valid() && run.best_valid) {
       x = *run.best_valid;  // an interruption returns the last valid map met
-      validity = internal::check_map(soup_.faces, x);
+      validity = internal::check_map(input_.soup.faces, x);
     }
     result.valid = validity.is_valid();
     result.iterations = run.iterations;
     // The chosen energy alone: the target stage also carries the fold barrier.
-    result.energy = internal::Spherical_energy<Energy>(soup_, energy_, run.correction).value(x);
+    result.energy = internal::Spherical_energy<Energy>(input_.soup, energy_, run.correction).value(x);
     result.flipped = validity.flipped;
     result.degenerate = validity.degenerate;
     result.degree = validity.degree;  // the soup's faces carry the input's orientation outward
-    result.inward_oriented = soup_.inward;
+    result.inward_oriented = input_.soup.inward;
     result.min_area_ratio = min_area_ratio(x);
     result.stages = run.stages;
     if(run.interrupted)
@@ -334,10 +508,10 @@ private:
   double min_area_ratio(const internal::Points& x) const
   {
     double smallest = std::numeric_limits<double>::infinity();
-    for(std::size_t f = 0; f < soup_.faces.size(); ++f) {
-      const auto& t = soup_.faces[f];
+    for(std::size_t f = 0; f < input_.soup.faces.size(); ++f) {
+      const auto& t = input_.soup.faces[f];
       const double sphere = internal::signed_spherical_area(x[t[0]], x[t[1]], x[t[2]]);
-      smallest = std::min(smallest, sphere / soup_.face_area(f));  // both totals are 4 pi
+      smallest = std::min(smallest, sphere / input_.soup.face_area(f));  // both totals are 4 pi
     }
     return smallest;
   }
@@ -352,12 +526,20 @@ private:
 
   Energy energy_;
   Geom_traits traits_;
-  internal::Triangle_soup soup_;
+  // Coarse-to-fine: the coarsest level's size, the growth from one level to the next, and
+  // the work done at the levels before the input (measured, doc/NOTES.md).
+  static constexpr std::size_t coarse_vertices = 500;
+  static constexpr double level_ratio = 3;
+  static constexpr std::size_t level_iterations = 100;
+  static constexpr double level_tolerance = 1e-5;
+
+  Level input_;
+  std::unique_ptr<internal::Progressive_mesh> hierarchy_;
   std::vector<vertex_descriptor> vertices_;
-  std::unique_ptr<Newton> solver_;
   internal::Points last_map_;
   std::string input_detail_;
-  internal::Newton_stop last_stop_ = internal::Newton_stop::CONVERGED;
+  internal::Newton_stop last_stop_ = internal::Newton_stop::CONVERGED;        // of the input level
+  internal::Newton_stop last_level_stop_ = internal::Newton_stop::CONVERGED;  // of the last stage
 };
 
 } // namespace Spherical_parameterization

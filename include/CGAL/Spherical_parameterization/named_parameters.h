@@ -60,7 +60,7 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(pipeline)
 /// replaces the built-in initialization (points are normalized; with `Pipeline::ROBUST` its degree
 /// must be 1 relative to the input's orientation, else `INVALID_INITIALIZATION`).
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(initial_sphere_map)
-/// Relative decrease of the energy below which the solver stops; default `1e-8`.
+/// Relative decrease of the energy below which the solver stops; default `1e-6`.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(tolerance)
 
 #undef CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER

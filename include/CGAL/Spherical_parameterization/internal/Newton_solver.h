@@ -6,6 +6,7 @@
 
 #include <CGAL/Spherical_parameterization/Progress.h>
 #include <CGAL/Spherical_parameterization/Triangle_jet.h>
+#include <CGAL/Spherical_parameterization/internal/Fold_barrier.h>
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
 #include <CGAL/Spherical_parameterization/internal/map_validity.h>
@@ -33,17 +34,28 @@ using Clock = std::chrono::steady_clock;
 struct Newton_options
 {
   std::size_t max_iterations = 200;
-  double tolerance = 1e-8;  ///< on the relative predicted and actual decrease of the energy
+  double tolerance = 1e-6;  ///< on the relative predicted and actual decrease of the energy
   Clock::time_point start = Clock::now();
   Clock::time_point deadline = Clock::time_point::max();
-  bool keep_fold_free = false;  ///< cap every step before a chord determinant reaches 0
+  /// Keep the map fold-free: cap every step before a chord determinant reaches 0, and add
+  /// a `Fold_barrier` to the energy of the faces that need one (see `Newton_solver`).
+  bool keep_fold_free = false;
+  /// The barrier's activation under which every face is held (`Fold_barrier::scale`,
+  /// about half the area ratio): the floor of the map's area distortion.
+  double fold_floor = 1e-7;
   bool stop_when_fold_free = false;  ///< a start-up stage: stop at the first fold-free map
+  /// When set, receives the last iterate (or the start) on which every face is positively
+  /// oriented: where a fold-free stage can take over after a stage that may fold.
+  Points* fold_free_iterate = nullptr;
+  /// With `fold_free_iterate`: stop (`Newton_stop::FOLDED`) after this many folded iterates
+  /// in a row, a fold that the energy does not undo by itself.
+  std::size_t max_folded_iterations = 5;
   bool projected_hessian = false;  ///< project each face's Hessian to PSD instead of shifting the exact one
   const char* stage = "";
   std::size_t iteration_offset = 0;  ///< iterations of earlier stages, for progress reports
 };
 
-enum class Newton_stop { CONVERGED, ITERATION_CAP, STALLED, CANCELLED, TIME_LIMIT, NON_FINITE_START };
+enum class Newton_stop { CONVERGED, ITERATION_CAP, STALLED, CANCELLED, TIME_LIMIT, NON_FINITE_START, FOLDED };
 
 struct Newton_outcome
 {
@@ -76,9 +88,12 @@ class Newton_solver
   static constexpr int lower_entries = 21;  // of a symmetric 6x6 matrix
 
 public:
-  explicit Newton_solver(const Faces& faces, std::size_t number_of_vertices)
-    : faces_(&faces), n_(number_of_vertices)
+  explicit Newton_solver(const Triangle_soup& soup)
+    : faces_(&soup.faces), n_(soup.number_of_vertices())
   {
+    barrier_data_.reserve(faces_->size());
+    for(const auto& t : soup.faces)
+      barrier_data_.emplace_back(Reference_triangle(soup.points[t[0]], soup.points[t[1]], soup.points[t[2]]));
     build_pattern();
     solver_.analyze_pattern(matrix_);
   }
@@ -88,13 +103,19 @@ public:
                           Visitor& visitor)
   {
     Newton_outcome out;
+    with_barrier_ = options.keep_fold_free;
+    floor_ = options.fold_floor;
     double e = total_energy(energy, x);
     out.energy = e;
     if(!std::isfinite(e)) {
       out.stop = Newton_stop::NON_FINITE_START;
       return out;
     }
+    if(options.fold_free_iterate && count_bad_faces(*faces_, x) == 0)
+      *options.fold_free_iterate = x;
+    std::size_t folded = 0;  // consecutive folded iterates
     Points trial(x.size());
+    std::vector<double> history{e};  // energy after each iteration, for the stall test
     for(;;) {
       if(out.iterations >= options.max_iterations) { out.stop = Newton_stop::ITERATION_CAP; break; }
       if(Clock::now() > options.deadline) { out.stop = Newton_stop::TIME_LIMIT; break; }
@@ -118,6 +139,16 @@ public:
         break;
       }
       x.swap(trial);
+      if(options.fold_free_iterate) {
+        folded = count_bad_faces(*faces_, x) == 0 ? 0 : folded + 1;
+        if(folded == 0)
+          *options.fold_free_iterate = x;
+        else if(folded > options.max_folded_iterations) {
+          ++out.iterations;
+          out.stop = Newton_stop::FOLDED;
+          break;
+        }
+      }
       const double decrease = e - e_new;
       e = e_new;
       ++out.iterations;
@@ -133,13 +164,50 @@ public:
       p.step = alpha;
       p.elapsed_seconds = std::chrono::duration<double>(Clock::now() - options.start).count();
       if(!visitor(p)) { out.stop = Newton_stop::CANCELLED; break; }
-      if(decrease <= options.tolerance * std::abs(e) * 1e-2) { out.stop = Newton_stop::CONVERGED; break; }
+      history.push_back(e);
+      if(decrease <= options.tolerance * std::abs(e) * 1e-2 || stalled(history, options.tolerance)) {
+        out.stop = Newton_stop::CONVERGED;
+        break;
+      }
       if(options.stop_when_fold_free && count_bad_faces(*faces_, x) == 0) { out.stop = Newton_stop::CONVERGED; break; }
     }
     return out;
   }
 
+  /// True if every face is positively oriented (beyond the degeneracy threshold) and at or
+  /// above `floor` on the scale of `Fold_barrier`.
+  bool is_above_floor(const Points& x, double floor)
+  {
+    face_value_.resize(faces_->size());
+    parallel_for<ConcurrencyTag>(faces_->size(), [&](std::size_t f) {
+      const auto& t = (*faces_)[f];
+      const Chord_triangle<double> chord(x[t[0]], x[t[1]], x[t[2]]);
+      const double det = chord.determinant();
+      face_value_[f] = det > degenerate_determinant && Fold_barrier::scale(chord, det, barrier_data_[f]) >= floor;
+    });
+    return std::find(face_value_.begin(), face_value_.end(), 0.0) == face_value_.end();
+  }
+
 private:
+  // The energy decreased by less than `tolerance` (relative) over the last iterations: a slow
+  // linear tail, such as faces pressed against the fold barrier in a squeezed protrusion,
+  // where the map no longer changes visibly.
+  static bool stalled(const std::vector<double>& history, double tolerance)
+  {
+    constexpr std::size_t window = 10;
+    if(history.size() <= window)
+      return false;
+    const double e = history.back();
+    return history[history.size() - 1 - window] - e <= tolerance * std::abs(e);
+  }
+
+  template <class Number>
+  Number barrier(std::size_t f, const Points& x) const
+  {
+    const auto& t = (*faces_)[f];
+    return Fold_barrier::energy(Chord_triangle<Number>(x[t[0]], x[t[1]], x[t[2]]), barrier_data_[f], floor_);
+  }
+
   void build_pattern()
   {
     // Lower triangle of the 2n x 2n matrix: 2x2 blocks on the diagonal and at every edge.
@@ -182,6 +250,18 @@ private:
     return int(std::lower_bound(begin, end, row) - matrix_.innerIndexPtr());
   }
 
+  // A face's 9x9 ambient Hessian pulled back to the tangent variables of its vertices.
+  Face_hessian tangent_hessian(std::size_t f, const Triangle_jet::Hessian& ambient) const
+  {
+    const auto& t = (*faces_)[f];
+    Face_hessian h;
+    for(int i = 0; i < 3; ++i)
+      for(int j = 0; j < 3; ++j)
+        h.template block<2, 2>(2 * i, 2 * j) =
+          bases_[t[i]].transpose() * ambient.template block<3, 3>(3 * i, 3 * j) * bases_[t[j]];
+    return h;
+  }
+
   void compute_bases(const Points& x)
   {
     bases_.resize(n_);
@@ -198,14 +278,11 @@ private:
     face_gradient_.resize(nf);
     face_hessian_.resize(nf * lower_entries);
     parallel_for<ConcurrencyTag>(nf, [&](std::size_t f) {
-      const Triangle_jet jet = energy.template face<Triangle_jet>(f, x);
+      Triangle_jet jet = energy.template face<Triangle_jet>(f, x);
+      if(with_barrier_ && barrier<double>(f, x) > 0)
+        jet += barrier<Triangle_jet>(f, x);
       face_gradient_[f] = jet.gradient;
-      const auto& t = (*faces_)[f];
-      Face_hessian h;
-      for(int i = 0; i < 3; ++i)
-        for(int j = 0; j < 3; ++j)
-          h.template block<2, 2>(2 * i, 2 * j) =
-            bases_[t[i]].transpose() * jet.hessian.template block<3, 3>(3 * i, 3 * j) * bases_[t[j]];
+      Face_hessian h = tangent_hessian(f, jet.hessian);
       if(projected)
         project_to_psd(h);
       double* out = &face_hessian_[f * lower_entries];
@@ -293,24 +370,25 @@ private:
     return v;
   }
 
-  // The energy, faces evaluated in parallel with Parallel_tag and summed in a fixed order,
-  // so that the result does not depend on the number of threads.
+  // The energy (with the barrier in a fold-free stage), faces evaluated in parallel with
+  // Parallel_tag and summed in a fixed order, so that the result does not depend on the
+  // number of threads. +inf if some face is past a barrier.
   template <class Energy>
   double total_energy(const Spherical_energy<Energy>& energy, const Points& x)
   {
-    if constexpr(std::is_same<ConcurrencyTag, CGAL::Sequential_tag>::value) {
-      return energy.value(x);
-    } else {
-      face_value_.resize(faces_->size());
-      parallel_for<ConcurrencyTag>(faces_->size(), [&](std::size_t f) { face_value_[f] = energy.template face<double>(f, x); });
-      double sum = 0;
-      for(double e : face_value_) {
-        if(!std::isfinite(e))
-          return std::numeric_limits<double>::infinity();
-        sum += e;
-      }
-      return sum;
+    face_value_.resize(faces_->size());
+    parallel_for<ConcurrencyTag>(faces_->size(), [&](std::size_t f) {
+      face_value_[f] = energy.template face<double>(f, x);
+      if(with_barrier_)
+        face_value_[f] += barrier<double>(f, x);
+    });
+    double sum = 0;
+    for(double e : face_value_) {
+      if(!std::isfinite(e))
+        return std::numeric_limits<double>::infinity();
+      sum += e;
     }
+    return sum;
   }
 
   // Armijo backtracking from `alpha`; returns the accepted energy (or +inf) with the point in `trial`.
@@ -330,6 +408,9 @@ private:
 
   const Faces* faces_;
   std::size_t n_;
+  bool with_barrier_ = false;
+  std::vector<Fold_barrier::Face_data> barrier_data_;
+  double floor_ = 0;  // the barrier's activation
   Matrix matrix_;
   std::vector<int> entry_index_;
   std::vector<int> diagonal_index_;
