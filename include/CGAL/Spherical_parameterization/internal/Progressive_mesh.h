@@ -94,6 +94,9 @@ public:
     : points_(&soup.points), faces_(soup.faces), mesh_(soup.faces, soup.points.size()),
       alive_(soup.points.size(), 1), face_alive_(soup.faces.size(), 1)
   {
+    represented_area_.resize(soup.faces.size());
+    for(std::size_t f = 0; f < soup.faces.size(); ++f)
+      represented_area_[f] = soup.face_area(f);
     initialize_quadrics();
     stamp_.assign(points_->size(), 0);
     std::vector<char> touched(points_->size(), 0);
@@ -132,6 +135,11 @@ public:
   /// The faces after all collapses (dead faces keep the vertices they had when removed).
   const Faces& coarse_faces() const { return faces_; }
   const std::vector<char>& coarse_face_alive() const { return face_alive_; }
+  /// The input area each face stands for, after all collapses.
+  const std::vector<double>& coarse_represented_areas() const { return represented_area_; }
+  /// The represented area of each moved corner's face before its collapse, in the order of
+  /// `moved_corners()`.
+  const std::vector<double>& previous_represented_areas() const { return previous_area_; }
   const std::vector<char>& coarse_vertex_alive() const { return alive_; }
 
 private:
@@ -255,6 +263,7 @@ private:
       mesh_.vertex[corner] = v;
       faces_[corner / 3][corner % 3] = v;
     }
+    share_represented_area(split);
     const int a = mesh_.vertex[T::previous(c)], b = mesh_.vertex[cb];
     mesh_.vertex_corner[v] = T::previous(o1);
     mesh_.vertex_corner[a] = T::next(o1);
@@ -265,8 +274,36 @@ private:
     splits_.push_back(split);
   }
 
+  // The input area of the faces of u, the two removed ones included, goes to the faces
+  // that replace them in proportion to their own areas: a coarse face stands for the input
+  // area around it, and a coarse level keeps the area shares of the input's regions (a
+  // decimated protrusion loses area to the chords that cut its curvature).
+  void share_represented_area(const Vertex_split& split)
+  {
+    double total = represented_area_[split.removed_faces[0]] + represented_area_[split.removed_faces[1]];
+    double geometric = 0;
+    for(int k = split.first_moved_corner; k < split.end_moved_corner; ++k) {
+      const int f = moved_corners_[k] / 3;
+      previous_area_.push_back(represented_area_[f]);
+      total += represented_area_[f];
+      geometric += face_area(f);
+    }
+    for(int k = split.first_moved_corner; k < split.end_moved_corner; ++k) {
+      const int f = moved_corners_[k] / 3;
+      represented_area_[f] = geometric > 0 ? total * face_area(f) / geometric : total / (split.end_moved_corner - split.first_moved_corner);
+    }
+  }
+
+  double face_area(int f) const
+  {
+    const auto& t = faces_[f];
+    return 0.5 * (point(t[1]) - point(t[0])).cross(point(t[2]) - point(t[0])).norm();
+  }
+
   const Points* points_;
   Faces faces_;
+  std::vector<double> represented_area_;  // of each face, see share_represented_area()
+  std::vector<double> previous_area_;     // of each moved corner's face, to undo the sharing
   Corner_table mesh_;
   std::vector<char> alive_, face_alive_;
   std::vector<Quadric> quadric_;
@@ -283,7 +320,8 @@ class Refinement
 {
 public:
   explicit Refinement(const Progressive_mesh& pm)
-    : pm_(&pm), faces_(pm.coarse_faces()), face_alive_(pm.coarse_face_alive()),
+    : pm_(&pm), faces_(pm.coarse_faces()), represented_area_(pm.coarse_represented_areas()),
+      face_alive_(pm.coarse_face_alive()),
       vertex_alive_(pm.coarse_vertex_alive()), splits_left_(pm.splits().size())
   {}
 
@@ -298,6 +336,7 @@ public:
     for(int k = s.first_moved_corner; k < s.end_moved_corner; ++k) {
       const int corner = pm_->moved_corners()[k];
       faces_[corner / 3][corner % 3] = s.removed;
+      represented_area_[corner / 3] = pm_->previous_represented_areas()[k];
     }
     face_alive_[s.removed_faces[0]] = face_alive_[s.removed_faces[1]] = 1;
     vertex_alive_[s.removed] = 1;
@@ -322,10 +361,12 @@ public:
   const Faces& faces() const { return faces_; }
   const std::vector<char>& face_alive() const { return face_alive_; }
   const std::vector<char>& vertex_alive() const { return vertex_alive_; }
+  const std::vector<double>& represented_areas() const { return represented_area_; }
 
 private:
   const Progressive_mesh* pm_;
   Faces faces_;
+  std::vector<double> represented_area_;
   std::vector<char> face_alive_, vertex_alive_;
   std::size_t splits_left_;
 };
@@ -348,6 +389,7 @@ inline Triangle_soup level_soup(const Triangle_soup& input, const Refinement& re
     if(refinement.face_alive()[f]) {
       const auto& t = refinement.faces()[f];
       soup.faces.push_back({to_level[t[0]], to_level[t[1]], to_level[t[2]]});
+      soup.represented_areas.push_back(refinement.represented_areas()[f]);
     }
   double area = 0;
   for(std::size_t f = 0; f < soup.faces.size(); ++f)

@@ -28,8 +28,8 @@ public:
     : faces_(&soup.faces), energy_(energy), correction_(d_min_correction)
   {
     data_.reserve(soup.faces.size());
-    for(const auto& t : soup.faces)
-      data_.push_back(energy_.face_data(Reference_triangle(soup.points[t[0]], soup.points[t[1]], soup.points[t[2]])));
+    for(std::size_t f = 0; f < soup.faces.size(); ++f)
+      data_.push_back(energy_.face_data(soup.reference_triangle(f)));
   }
 
   std::size_t number_of_faces() const { return faces_->size(); }

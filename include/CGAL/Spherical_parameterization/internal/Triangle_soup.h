@@ -4,6 +4,8 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TRIANGLE_SOUP_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TRIANGLE_SOUP_H
 
+#include <CGAL/Spherical_parameterization/Reference_triangle.h>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
@@ -30,6 +32,9 @@ struct Triangle_soup
   bool inward = false;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< of the input, before scaling
   double scale = 1;                                    ///< input length * scale = soup length
+  /// For a coarse level of the input: the input area each face stands for, which replaces
+  /// its own area in the energies; empty for the input itself.
+  std::vector<double> represented_areas;
 
   std::size_t number_of_vertices() const { return points.size(); }
   std::size_t number_of_faces() const { return faces.size(); }
@@ -38,6 +43,17 @@ struct Triangle_soup
   {
     const auto& t = faces[f];
     return 0.5 * (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm();
+  }
+
+  /// The triangle the energies compare face `f` with: its own shape, with the area it
+  /// stands for.
+  Reference_triangle reference_triangle(std::size_t f) const
+  {
+    const auto& t = faces[f];
+    Reference_triangle r(points[t[0]], points[t[1]], points[t[2]]);
+    if(!represented_areas.empty())
+      r.area = represented_areas[f];
+    return r;
   }
 };
 
