@@ -3,7 +3,7 @@
 # Run as root (or with sudo). Set SKIP_APT=1 to skip.
 set -euo pipefail
 [ "${SKIP_APT:-0}" = 1 ] && exit 0
-packages=(cmake g++ make libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
+packages=(cmake g++ make libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev doxygen libopenblas0-pthread
           libtbb-dev libsuitesparse-dev libcgal-demo libopenmesh-dev python3-matplotlib python3-numpy)
 missing=()
 for p in "${packages[@]}"; do

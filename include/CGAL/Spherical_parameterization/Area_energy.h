@@ -16,6 +16,7 @@ namespace Spherical_parameterization {
 /// \cgalModels `SphericalEnergy`
 struct Area_energy
 {
+  /// \cond SKIP_IN_MANUAL
   using Face_data = double;  // input area
   Face_data face_data(const Reference_triangle& r) const { return r.area; }
 
@@ -24,6 +25,7 @@ struct Area_energy
   {
     return t.squared_double_area() * (0.25 / input_area);
   }
+  /// \endcond
 };
 
 } // namespace Spherical_parameterization

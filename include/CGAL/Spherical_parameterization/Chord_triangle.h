@@ -23,11 +23,14 @@ template <class Number>
 class Chord_triangle
 {
 public:
-  using Vector = Eigen::Vector3d;
+  using Vector = Eigen::Vector3d;  ///< a point of the sphere
+  /// True if `Number` is `Triangle_jet`: the primitives return derivatives too.
   static constexpr bool with_derivatives = std::is_same<Number, Triangle_jet>::value;
 
+  /// The triangle `(a, b, c)` of three points of the unit sphere.
   Chord_triangle(const Vector& a, const Vector& b, const Vector& c) : x_{a, b, c} {}
 
+  /// Vertex `i` (0, 1 or 2), as a plain point: no derivatives.
   const Vector& point(int i) const { return x_[i]; }
 
   /// `|x_j - x_k|^2` for the edge `(j, k)` opposite vertex `i`.

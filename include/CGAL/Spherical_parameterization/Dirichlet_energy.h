@@ -23,6 +23,7 @@ struct Dirichlet_energy
   double min_angle = 5 * M_PI / 180;   ///< lower clamp of the input angles, radians
   double max_angle = 85 * M_PI / 180;  ///< upper clamp of the input angles, radians
 
+  /// \cond SKIP_IN_MANUAL
   using Face_data = std::array<double, 3>;  // half cotangent weight of each edge
   Face_data face_data(const Reference_triangle& r) const { return r.half_cotangents(min_angle, max_angle); }
 
@@ -31,6 +32,7 @@ struct Dirichlet_energy
   {
     return t.spring(w);
   }
+  /// \endcond
 };
 
 } // namespace Spherical_parameterization

@@ -19,6 +19,7 @@ namespace Spherical_parameterization {
 /// \cgalModels `SphericalEnergy`
 struct MIPS_energy
 {
+  /// \cond SKIP_IN_MANUAL
   using Face_data = Jacobian_face_data;
   Face_data face_data(const Reference_triangle& r) const { return Face_data(r); }
 
@@ -29,6 +30,7 @@ struct MIPS_energy
     // A_in / A = 2 A_in / |(b-a) x (c-a)|
     return t.spring(d.weights) * (2 * d.input_area) * inverse(sqrt(t.squared_double_area()));
   }
+  /// \endcond
 };
 
 } // namespace Spherical_parameterization

@@ -26,6 +26,7 @@ struct Progress
 /// A visitor is any object with `bool operator()(const Progress&)`; returning `false` cancels the solve.
 struct Default_visitor
 {
+  /// Returns `true`: the solve goes on.
   bool operator()(const Progress&) const { return true; }
 };
 

@@ -18,11 +18,12 @@ namespace Spherical_parameterization {
 /// Energies read their weights and areas from it (never from the sphere points).
 struct Reference_triangle
 {
-  std::array<Eigen::Vector3d, 3> points;
-  double area = 0;
+  std::array<Eigen::Vector3d, 3> points;  ///< the vertices, in the order of the face
+  double area = 0;                        ///< the area, after scaling
   std::array<double, 3> angles{0, 0, 0};  ///< interior angle at each vertex, in radians
 
   Reference_triangle() = default;
+  /// The triangle `(p, q, r)`, with its area and angles.
   Reference_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r)
     : points{p, q, r}
   {
@@ -61,9 +62,10 @@ struct Reference_triangle
 /// cotangents, with which `sum_i w_i |e_i|^2 = InputArea * |J|_F^2`, and the input area.
 struct Jacobian_face_data
 {
-  std::array<double, 3> weights;
-  double input_area;
+  std::array<double, 3> weights;  ///< `exact_half_cotangents()` of the input triangle
+  double input_area;              ///< the area of the input triangle
 
+  /// The data of the input triangle `r`.
   explicit Jacobian_face_data(const Reference_triangle& r) : weights(r.exact_half_cotangents()), input_area(r.area) {}
 };
 

@@ -18,7 +18,7 @@ namespace Spherical_parameterization {
 /// orientation) and the degree is 1 (relative to that orientation).
 struct Result
 {
-  Error_code status = Error_code::OK;
+  Error_code status = Error_code::OK;  ///< `OK`, or what went wrong
   std::string detail;             ///< what and where: "12 border edges", "2 flipped faces", ...
 
   bool valid = false;             ///< the map written is a valid embedding
@@ -30,7 +30,7 @@ struct Result
   bool inward_oriented = false;   ///< the input's faces are oriented towards its inside
   double min_area_ratio = 0;      ///< min over faces of (spherical area share / input area share)
   double time_seconds = 0;        ///< wall time of the solve
-  std::string stages;             ///< the stages run with their iterations, e.g. "tutte:12 target:9"
+  std::string stages;             ///< the stages run with their iterations, for instance "tutte:12 target:9"
 
   /// The message of `status`.
   const char* message() const { return error_message(status); }

@@ -20,6 +20,7 @@ namespace Spherical_parameterization {
 class Eigen_sparse_LDLT_traits
 {
 public:
+  /// \cond SKIP_IN_MANUAL
   using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
   using Vector = Eigen::VectorXd;
 
@@ -33,6 +34,7 @@ public:
   }
 
   Vector solve(const Vector& b) const { return solver_.solve(b); }
+  /// \endcond
 
 private:
   Eigen::SimplicialLDLT<Matrix, Eigen::Lower> solver_;
@@ -46,6 +48,7 @@ private:
 class Cholmod_traits
 {
 public:
+  /// \cond SKIP_IN_MANUAL
   using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
   using Vector = Eigen::VectorXd;
 
@@ -58,6 +61,7 @@ public:
     return solver_.info() == Eigen::Success;
   }
   Vector solve(const Vector& b) const { return solver_.solve(b); }
+  /// \endcond
 
 private:
   Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower> solver_;

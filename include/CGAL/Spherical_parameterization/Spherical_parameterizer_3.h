@@ -67,11 +67,15 @@ class Spherical_parameterizer_3
   using Newton = internal::Newton_solver<SolverTraits, ConcurrencyTag>;
 
 public:
+  /// A parameterizer minimizing `energy`, reading the input points with `traits`. The default
+  /// energy is `combined_energy(1, 1)` for `Combined_energy`, `*energy_by_name("combined")`
+  /// for `Energy_mix`, and `Energy()` otherwise.
   explicit Spherical_parameterizer_3(const Energy& energy = default_energy(), const Geom_traits& traits = Geom_traits())
     : energy_(energy), traits_(traits) {}
 
   /// The energy; change its weights between two solves.
   Energy& energy() { return energy_; }
+  /// The energy.
   const Energy& energy() const { return energy_; }
 
   /// Checks the mesh and precomputes what depends on it only.

@@ -13,13 +13,14 @@ namespace CGAL {
 namespace Spherical_parameterization {
 
 /// \ingroup PkgSphericalParameterizationEnergies
-/// The stretch energy of Sander et al. as written by Friedel et al., Section 2.2:
+/// The stretch energy of Sander et al., as written by Friedel et al., Section 2.2:
 /// `(InputArea / Area(a,b,c))^2 * Dirichlet`, with the flat chord area and the exact
 /// cotangents of the input (`InputArea * |J|_F^2`, non-negative). It grows without bound as
 /// a chord triangle shrinks, so it needs a start without degenerate faces.
 /// \cgalModels `SphericalEnergy`
 struct Stretch_energy
 {
+  /// \cond SKIP_IN_MANUAL
   using Face_data = Jacobian_face_data;
   Face_data face_data(const Reference_triangle& r) const { return Face_data(r); }
 
@@ -29,6 +30,7 @@ struct Stretch_energy
     // (A_in / A)^2 = 4 A_in^2 / |(b-a) x (c-a)|^2
     return t.spring(d.weights) * (4 * d.input_area * d.input_area) * inverse(t.squared_double_area());
   }
+  /// \endcond
 };
 
 } // namespace Spherical_parameterization

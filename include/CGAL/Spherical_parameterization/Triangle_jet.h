@@ -17,19 +17,22 @@ namespace Spherical_parameterization {
 /// `Triangle_jet` the same code yields exact derivatives, with `double` only the value.
 struct Triangle_jet
 {
-  using Gradient = Eigen::Matrix<double, 9, 1>;
-  using Hessian = Eigen::Matrix<double, 9, 9>;
+  using Gradient = Eigen::Matrix<double, 9, 1>;  ///< derivatives in `(a.x, a.y, a.z, b.x, ..., c.z)`
+  using Hessian = Eigen::Matrix<double, 9, 9>;   ///< second derivatives, in the same order
 
-  double value = 0;
-  Gradient gradient = Gradient::Zero();
-  Hessian hessian = Hessian::Zero();
+  double value = 0;                      ///< the value of the function
+  Gradient gradient = Gradient::Zero();  ///< its gradient
+  Hessian hessian = Hessian::Zero();     ///< its Hessian
 
   Triangle_jet() = default;
   /// a constant
   Triangle_jet(double v) : value(v) {}
 
+  /// Adds `o`.
   Triangle_jet& operator+=(const Triangle_jet& o) { value += o.value; gradient += o.gradient; hessian += o.hessian; return *this; }
+  /// Subtracts `o`.
   Triangle_jet& operator-=(const Triangle_jet& o) { value -= o.value; gradient -= o.gradient; hessian -= o.hessian; return *this; }
+  /// Multiplies by the constant `s`.
   Triangle_jet& operator*=(double s) { value *= s; gradient *= s; hessian *= s; return *this; }
 };
 
@@ -46,13 +49,20 @@ inline Triangle_jet chain(const Triangle_jet& f, double value, double d1, double
 /// The same for a plain number: only the value.
 inline double chain(double, double value, double, double) { return value; }
 
+/// `f + g`.
 inline Triangle_jet operator+(Triangle_jet f, const Triangle_jet& g) { return f += g; }
+/// `f - g`.
 inline Triangle_jet operator-(Triangle_jet f, const Triangle_jet& g) { return f -= g; }
+/// `-f`.
 inline Triangle_jet operator-(Triangle_jet f) { return f *= -1.0; }
+/// `f * s` for a constant `s`.
 inline Triangle_jet operator*(Triangle_jet f, double s) { return f *= s; }
+/// `s * f` for a constant `s`.
 inline Triangle_jet operator*(double s, Triangle_jet f) { return f *= s; }
+/// `f / s` for a constant `s`.
 inline Triangle_jet operator/(Triangle_jet f, double s) { return f *= 1.0 / s; }
 
+/// `f * g` (product rule).
 inline Triangle_jet operator*(const Triangle_jet& f, const Triangle_jet& g)
 {
   Triangle_jet r;
@@ -63,22 +73,28 @@ inline Triangle_jet operator*(const Triangle_jet& f, const Triangle_jet& g)
   return r;
 }
 
+/// `1 / f`.
 inline Triangle_jet inverse(const Triangle_jet& f)
 {
   const double inv = 1.0 / f.value;
   return chain(f, inv, -inv * inv, 2 * inv * inv * inv);
 }
+/// `1 / x` for a plain number.
 inline double inverse(double x) { return 1.0 / x; }
 
+/// `f / g`.
 inline Triangle_jet operator/(const Triangle_jet& f, const Triangle_jet& g) { return f * inverse(g); }
+/// `s / g` for a constant `s`.
 inline Triangle_jet operator/(double s, const Triangle_jet& g) { return s * inverse(g); }
 
+/// The square root of `f`, for `f.value > 0`.
 inline Triangle_jet sqrt(const Triangle_jet& f)
 {
   const double s = std::sqrt(f.value);
   return chain(f, s, 0.5 / s, -0.25 / (s * f.value));
 }
 
+/// The natural logarithm of `f`, for `f.value > 0`.
 inline Triangle_jet log(const Triangle_jet& f)
 {
   return chain(f, std::log(f.value), 1.0 / f.value, -1.0 / (f.value * f.value));
@@ -86,6 +102,7 @@ inline Triangle_jet log(const Triangle_jet& f)
 
 /// The value of a jet or of a plain number.
 inline double value_of(const Triangle_jet& f) { return f.value; }
+/// The same for a plain number: `x`.
 inline double value_of(double x) { return x; }
 
 } // namespace Spherical_parameterization

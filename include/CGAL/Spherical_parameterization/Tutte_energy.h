@@ -16,6 +16,7 @@ namespace Spherical_parameterization {
 /// \cgalModels `SphericalEnergy`
 struct Tutte_energy
 {
+  /// \cond SKIP_IN_MANUAL
   struct Face_data {};
   Face_data face_data(const Reference_triangle&) const { return {}; }
 
@@ -24,6 +25,7 @@ struct Tutte_energy
   {
     return t.spring({1.0, 1.0, 1.0});
   }
+  /// \endcond
 };
 
 } // namespace Spherical_parameterization

@@ -24,15 +24,22 @@ template <class... Energies>
 class Weighted_sum
 {
 public:
+  /// The number of terms.
   static constexpr std::size_t size = sizeof...(Energies);
+  /// The weights `w_i`, in the order of the terms.
   using Weights = std::array<double, size>;
-  using Face_data = std::tuple<typename Energies::Face_data...>;
 
+  /// The sum of the terms `energies` with the weights `weights`.
   explicit Weighted_sum(const Weights& weights, Energies... energies)
     : weights_(weights), energies_(energies...) {}
 
+  /// The weights of the terms.
   const Weights& weights() const { return weights_; }
+  /// Changes the weights; the terms stay. A term of weight 0 is skipped.
   void set_weights(const Weights& weights) { weights_ = weights; }
+
+  /// \cond SKIP_IN_MANUAL
+  using Face_data = std::tuple<typename Energies::Face_data...>;
 
   Face_data face_data(const Reference_triangle& r) const
   {
@@ -46,6 +53,7 @@ public:
     add_terms(t, d, sum, std::index_sequence_for<Energies...>());
     return sum;
   }
+  /// \endcond
 
 private:
   template <class Number, std::size_t... I>

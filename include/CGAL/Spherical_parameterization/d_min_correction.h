@@ -10,7 +10,7 @@ namespace CGAL {
 namespace Spherical_parameterization {
 
 /// \ingroup PkgSphericalParameterizationEnergies
-/// `d_min^-2`, the factor of Friedel et al. (Section 2.1, Equation 2) that turns a flat energy
+/// `d_min^-2`, the factor (Friedel et al., Section 2.1, Equation 2) that turns a flat energy
 /// of the chord triangle into an upper bound of its spherical counterpart. `d_min` is the
 /// distance from the sphere centre to the closest point of the flat triangle:
 /// - acute triangle: the circumcentre, which is the foot of the centre on the plane, so

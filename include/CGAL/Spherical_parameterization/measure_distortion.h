@@ -78,7 +78,7 @@ struct Distortion_report
   /// Min over faces of the ratio `r` above; negative when some face is flipped.
   double min_area_ratio = 0;
 
-  /// Stretch of Sander et al. (2001) for the map from the parameter domain (the chord
+  /// Stretch (Sander et al., 2001) of the map from the parameter domain (the chord
   /// triangles) to the surface (the input triangles). Both are first scaled to total area
   /// 4 pi, as Sander et al. normalize the parameter and surface areas to the same total, so
   /// that an isometry up to scale has stretch 1. With `Gamma >= gamma` the singular values of

@@ -16,8 +16,8 @@ enum class Pipeline
   /// The default. Starts from a fold-free map where the central projection folds, untangles
   /// what is left, and minimizes the chosen energy without ever letting a face flip.
   ROBUST,
-  /// Friedel et al. exactly: central projection about the centroid, then plain minimization
-  /// of the chosen energy. Fold-free on many meshes, not on all.
+  /// The recipe of Friedel et al., exactly: central projection about the centroid, then
+  /// plain minimization of the chosen energy. Fold-free on many meshes, not on all.
   PAPER
 };
 
