@@ -466,6 +466,7 @@ private:
                 internal::Points& x, Visitor& visitor, bool stop_when_fold_free = false)
   {
     run.options.stop_when_fold_free = stop_when_fold_free;
+    run.options.boost_search = !stop_when_fold_free && run.pipeline == Pipeline::ROBUST;
     const internal::Spherical_energy<StageEnergy> spherical(level.soup, energy, run.correction);
     run.options.stage = stage;
     run.options.keep_fold_free = keep_fold_free;

@@ -10,6 +10,7 @@
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
 #include <CGAL/Spherical_parameterization/internal/map_validity.h>
+#include <CGAL/Spherical_parameterization/internal/mobius_boost.h>
 #include <CGAL/Spherical_parameterization/internal/parallel_for.h>
 #include <CGAL/Spherical_parameterization/internal/project_psd.h>
 #include <CGAL/Spherical_parameterization/internal/step_bound.h>
@@ -54,6 +55,10 @@ struct Newton_options
   /// Iterations that solve only the 2x2 diagonal blocks of the Hessian (block Jacobi) before
   /// Newton: a cheap smoother of the local error a vertex split leaves.
   std::size_t smoothing_iterations = 0;
+  /// Before every Newton iteration, a Newton step on the three parameters of a Moebius
+  /// boost of the whole map (`boost_step()`), the directions in which the energies of
+  /// conformal type are nearly flat.
+  bool boost_search = false;
   const char* stage = "";
   std::size_t iteration_offset = 0;  ///< iterations of earlier stages, for progress reports
 };
@@ -123,6 +128,9 @@ public:
       if(out.iterations >= options.max_iterations) { out.stop = Newton_stop::ITERATION_CAP; break; }
       if(Clock::now() > options.deadline) { out.stop = Newton_stop::TIME_LIMIT; break; }
 
+      if(options.boost_search &&
+         boost_step(x, [&](const Points& y) { return total_energy(energy, y); }, e))
+        e = total_energy(energy, x);
       compute_bases(x);
       Vector d;
       const bool smoothing = out.iterations < options.smoothing_iterations;
