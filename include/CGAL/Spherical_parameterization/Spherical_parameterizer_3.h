@@ -314,7 +314,17 @@ private:
       return uninterrupted;
     }
     x = std::move(fold_free);
-    return minimize(energy_, stage, true, run, level, x, visitor);
+    // Continuation on the floor: first 1000 times higher, to a loose tolerance, so that the
+    // large moves happen while the squeezed faces are still large and well conditioned;
+    // then the floor itself (cow: 41 -> 28 iterations, camel: 90 -> 44, each to a lower
+    // energy).
+    const internal::Newton_options saved = run.options;
+    run.options.fold_floor = 1000 * saved.fold_floor;
+    run.options.tolerance = std::max(saved.tolerance, 1e-4);
+    const bool first = minimize(energy_, stage, true, run, level, x, visitor);
+    run.options.fold_floor = saved.fold_floor;
+    run.options.tolerance = saved.tolerance;
+    return first && minimize(energy_, stage, true, run, level, x, visitor);
   }
 
   // Garanzha et al.'s continuation: unfold with a finite energy, then tighten the barrier.

@@ -301,11 +301,15 @@ private:
     face_hessian_.resize(nf * lower_entries);
     parallel_for<ConcurrencyTag>(nf, [&](std::size_t f) {
       Triangle_jet jet = energy.template face<Triangle_jet>(f, x);
-      if(with_barrier_ && barrier<double>(f, x) > 0)
+      // The barrier is not convex in the points (det is trilinear): a face it holds gets
+      // its Hessian made positive definite, while the others keep their exact one
+      // (measured on camel's fold-free stage: 104 -> 90 iterations, 13 -> 7.8 s).
+      const bool held = with_barrier_ && barrier<double>(f, x) > 0;
+      if(held)
         jet += barrier<Triangle_jet>(f, x);
       face_gradient_[f] = jet.gradient;
       Face_hessian h = tangent_hessian(f, jet.hessian);
-      if(projected)
+      if(projected || held)
         project_to_psd(h);
       double* out = &face_hessian_[f * lower_entries];
       for(int i = 0; i < 6; ++i)
