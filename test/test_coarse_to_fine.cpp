@@ -1,0 +1,297 @@
+// Copyright (c) 2026 The CGAL Spherical_parameterization authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The parts of the robust pipeline's coarse-to-fine solve, each against the property it is
+// there for: the progressive mesh (a closed genus-0 manifold at every level, undone exactly,
+// area shares kept), the fans of the vertex splits, the placement of a split vertex in the
+// kernel of its fan, the mean value point, and the Moebius boost.
+// Meshes built in code only (the `fast` CTest label, also run under the sanitizers).
+// Usage: test_coarse_to_fine [ignored arguments]
+
+#include <CGAL/Spherical_parameterization/Dirichlet_energy.h>
+#include <CGAL/Spherical_parameterization/internal/Progressive_mesh.h>
+#include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
+#include <CGAL/Spherical_parameterization/internal/kernel_placement.h>
+#include <CGAL/Spherical_parameterization/internal/map_validity.h>
+#include <CGAL/Spherical_parameterization/internal/mobius_boost.h>
+
+#include "test_support.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace SP = CGAL::Spherical_parameterization;
+namespace I = SP::internal;
+using namespace test_support;
+
+namespace {
+
+// A subdivided icosahedron with its vertices pushed radially by `bumps`, and a long thin
+// finger grown out of it (a protrusion, like a leg), so that the decimation meets both.
+I::Triangle_soup bumpy_sphere_with_finger(int level, double bumps)
+{
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  I::Points p{{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+              {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  I::Faces f{{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+             {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+             {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  for(auto& q : p) q.normalize();
+  for(int l = 0; l < level; ++l) {
+    std::map<std::pair<int, int>, int> middle;
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      const auto found = middle.find(key);
+      if(found != middle.end()) return found->second;
+      p.push_back((p[a] + p[b]).normalized());
+      return middle[key] = int(p.size()) - 1;
+    };
+    I::Faces next;
+    for(const auto& t3 : f) {
+      const int ab = mid(t3[0], t3[1]), bc = mid(t3[1], t3[2]), ca = mid(t3[2], t3[0]);
+      next.push_back({t3[0], ab, ca});
+      next.push_back({t3[1], bc, ab});
+      next.push_back({t3[2], ca, bc});
+      next.push_back({ab, bc, ca});
+    }
+    f.swap(next);
+  }
+  // The finger: the vertices within a small cap around +z are pulled out along z.
+  for(auto& q : p) {
+    const double cap = q.z() - 0.9;
+    if(cap > 0) q *= 1 + 40 * cap;
+    q *= 1 + bumps * uniform(-1, 1);
+  }
+  return I::make_triangle_soup(p, f);
+}
+
+// V - E + F and that every directed edge has exactly one reverse: a closed 2-manifold sphere.
+bool is_closed_manifold_sphere(const I::Faces& faces, const std::vector<char>& face_alive, std::size_t vertices,
+                               std::string& why)
+{
+  std::map<std::pair<int, int>, int> directed;
+  std::size_t count = 0;
+  for(std::size_t k = 0; k < faces.size(); ++k) {
+    if(!face_alive[k]) continue;
+    ++count;
+    const auto& t = faces[k];
+    if(t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) { why = "a face repeats a vertex"; return false; }
+    for(int i = 0; i < 3; ++i)
+      ++directed[{t[i], t[(i + 1) % 3]}];
+  }
+  for(const auto& [edge, n] : directed)
+    if(n != 1 || !directed.count({edge.second, edge.first})) { why = "an edge is not shared by two faces"; return false; }
+  const long euler = long(vertices) - long(directed.size() / 2) + long(count);
+  if(euler != 2) { why = "Euler characteristic " + std::to_string(euler); return false; }
+  return true;
+}
+
+double sum_alive(const std::vector<double>& values, const std::vector<char>& alive)
+{
+  double s = 0;
+  for(std::size_t k = 0; k < values.size(); ++k)
+    if(alive[k]) s += values[k];
+  return s;
+}
+
+void test_progressive_mesh()
+{
+  const I::Triangle_soup soup = bumpy_sphere_with_finger(3, 0.02);
+  const I::Progressive_mesh pm(soup, 8);
+  report("progressive mesh: collapses down to the target (" + std::to_string(soup.number_of_vertices()) + " -> " +
+           std::to_string(pm.number_of_coarse_vertices()) + " vertices)",
+         pm.number_of_coarse_vertices() <= 8);
+
+  I::Refinement refinement(pm);
+  bool manifold = true, area_kept = true, fans_ok = true;
+  std::string why;
+  I::Fan fan;
+  const std::size_t checks = 12, stride = std::max<std::size_t>(1, pm.splits().size() / checks);
+  for(std::size_t k = 0; refinement.splits_left() > 0; ++k) {
+    if(k % stride == 0) {
+      manifold = manifold && is_closed_manifold_sphere(refinement.faces(), refinement.face_alive(),
+                                                       refinement.number_of_vertices(), why);
+      const double total = sum_alive(refinement.represented_areas(), refinement.face_alive());
+      area_kept = area_kept && std::abs(total - 4 * M_PI) < 1e-9 * 4 * M_PI;
+    }
+    const I::Vertex_split& split = refinement.split_next();
+    refinement.fan(split, fan);
+    // Every pair (p, q) is a face (u, p, q) of the mesh, in this orientation.
+    std::set<std::array<int, 3>> faces;
+    for(std::size_t f = 0; f < refinement.faces().size(); ++f)
+      if(refinement.face_alive()[f]) {
+        auto t = refinement.faces()[f];
+        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+        faces.insert(t);
+      }
+    for(const auto& [p, q] : fan) {
+      std::array<int, 3> t{split.removed, p, q};
+      std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+      fans_ok = fans_ok && faces.count(t) == 1;
+    }
+    fans_ok = fans_ok && fan.size() >= 3;
+  }
+  report("progressive mesh: every level is a closed 2-manifold of Euler characteristic 2", manifold, why);
+  report("progressive mesh: the areas faces stand for add up to the input's 4 pi at every level", area_kept);
+  report("refinement: the fan of a split vertex lists its faces (u, p, q), oriented", fans_ok);
+
+  bool same = refinement.number_of_vertices() == soup.number_of_vertices();
+  for(std::size_t f = 0; f < soup.faces.size(); ++f)
+    same = same && refinement.face_alive()[f] && refinement.faces()[f] == soup.faces[f] &&
+           std::abs(refinement.represented_areas()[f] - soup.face_area(f)) <= 1e-12;
+  report("refinement: undoing every collapse gives back the input's faces and areas exactly", same);
+
+  std::vector<int> to_input;
+  const I::Triangle_soup coarse = I::level_soup(soup, I::Refinement(pm), to_input);
+  double oriented = 0;  // signed volume of the coarse level: the input's outward orientation
+  for(const auto& t : coarse.faces)
+    oriented += coarse.points[t[0]].dot(coarse.points[t[1]].cross(coarse.points[t[2]]));
+  report("level soup: the coarsest level keeps the input's outward orientation", oriented > 0);
+}
+
+// A fan around `center` on the sphere: `k` ring points at angular radius `radius`, angles
+// jittered, and the radius of every other point scaled by `reflex` (< 1: a star, not convex).
+I::Points ring_points(const Eigen::Vector3d& center, int k, double radius, double reflex)
+{
+  const Eigen::Matrix<double, 3, 2> basis = I::tangent_basis(center);
+  I::Points ring;
+  for(int i = 0; i < k; ++i) {
+    const double angle = 2 * M_PI * (i + uniform(-0.2, 0.2)) / k;
+    const double r = radius * (i % 2 ? reflex : 1.0);
+    ring.push_back((center + std::tan(r) * (basis * Eigen::Vector2d(std::cos(angle), std::sin(angle)))).normalized());
+  }
+  return ring;
+}
+
+I::Fan fan_of_ring(int first, int k)
+{
+  I::Fan fan;
+  for(int i = 0; i < k; ++i)
+    fan.push_back({first + i, first + (i + 1) % k});
+  return fan;
+}
+
+void test_kernel_placement()
+{
+  int star_inside = 0, convex_inside = 0, empty_reported = 0;
+  const int trials = 40;
+  for(int n = 0; n < trials; ++n) {
+    const Eigen::Vector3d center = random_unit_vector();
+    const int k = 5 + n % 6;
+    // A bad guess, outside the ring, so the kernel centroid has to be found.
+    const Eigen::Vector3d outside = ring_points(center, 1, 0.3, 1.0)[0];
+    I::Points convex = ring_points(center, k, 0.05, 1.0);
+    convex_inside += I::fan_clearance(I::place_in_kernel(convex, fan_of_ring(0, k), outside), convex, fan_of_ring(0, k)) > 0;
+    I::Points star = ring_points(center, k + k % 2, 0.05, 0.35);
+    const I::Fan star_fan = fan_of_ring(0, k + k % 2);
+    star_inside += I::fan_clearance(I::place_in_kernel(star, star_fan, outside), star, star_fan) > 0;
+    // A bow tie, (0,0) (1,1) (1,0) (0,1): no point sees all its edges from the left.
+    I::Points bow_tie;
+    for(const Eigen::Vector2d corner : {Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1), Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1)})
+      bow_tie.push_back((center + 0.05 * (I::tangent_basis(center) * corner)).normalized());
+    const I::Fan bow_tie_fan = fan_of_ring(0, 4);
+    empty_reported += !(I::fan_clearance(I::place_in_kernel(bow_tie, bow_tie_fan, center), bow_tie, bow_tie_fan) > 0);
+  }
+  report("kernel placement: inside every convex fan, from a guess outside it", convex_inside == trials,
+         str(convex_inside) + " of " + str(trials));
+  report("kernel placement: inside every star-shaped, non-convex fan", star_inside == trials,
+         str(star_inside) + " of " + str(trials));
+  report("kernel placement: a fan with an empty kernel is reported (clearance not positive)", empty_reported == trials,
+         str(empty_reported) + " of " + str(trials));
+}
+
+void test_mean_value_point()
+{
+  // A planar input fan and its image by a small similarity onto the sphere near `center`:
+  // the mean value point reproduces the image of the centre vertex (linear precision).
+  double worst = 0;
+  for(int n = 0; n < 20; ++n) {
+    const int k = 4 + n % 7;
+    I::Points input{Eigen::Vector3d::Zero()};
+    for(int i = 0; i < k; ++i) {
+      const double angle = 2 * M_PI * (i + uniform(-0.3, 0.3)) / k;
+      input.push_back(uniform(0.5, 2.0) * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0));
+    }
+    const Eigen::Vector3d center = random_unit_vector();
+    const Eigen::Matrix<double, 3, 2> basis = I::tangent_basis(center);
+    const double scale = 1e-3;
+    I::Points sphere(input.size());
+    for(std::size_t i = 0; i < input.size(); ++i)
+      sphere[i] = center + scale * (basis * input[i].head<2>());  // on the tangent plane
+    const I::Fan fan = fan_of_ring(1, k);
+    const Eigen::Vector3d got = I::mean_value_point(0, input, sphere, fan);
+    worst = std::max(worst, (got - center.normalized()).norm() / scale);
+  }
+  report("mean value point: reproduces the centre of a planar fan mapped by a similarity (rel 1e-9)", worst < 1e-9,
+         "relative error " + str(worst));
+}
+
+void test_mobius_boost()
+{
+  double norm_error = 0, derivative_error = 0;
+  int orientation_kept = 0;
+  const int trials = 50;
+  for(int n = 0; n < trials; ++n) {
+    const Eigen::Vector3d b = uniform(0, 0.6) * random_unit_vector();
+    const Eigen::Vector3d x = random_unit_vector();
+    norm_error = std::max(norm_error, std::abs(I::mobius_boost(b, x).norm() - 1));
+    const double h = 1e-6;
+    const Eigen::Vector3d derivative = (I::mobius_boost(h * b, x) - I::mobius_boost(-h * b, x)) / (2 * h);
+    derivative_error = std::max(derivative_error, (derivative - 2 * (b - b.dot(x) * x)).norm());
+    // A small triangle keeps its orientation.
+    const Eigen::Matrix<double, 3, 2> basis = I::tangent_basis(x);
+    const Eigen::Vector3d p = x, q = (x + 1e-3 * basis.col(0)).normalized(), r = (x + 1e-3 * basis.col(1)).normalized();
+    const Eigen::Vector3d mp = I::mobius_boost(b, p), mq = I::mobius_boost(b, q), mr = I::mobius_boost(b, r);
+    orientation_kept += (p.dot(q.cross(r)) > 0) == (mp.dot(mq.cross(mr)) > 0);
+  }
+  report("Moebius boost: maps the sphere onto itself (1e-14)", norm_error < 1e-14, str(norm_error));
+  report("Moebius boost: its derivative at 0 is 2 (b - (b.x) x) (1e-8)", derivative_error < 1e-8, str(derivative_error));
+  report("Moebius boost: keeps the orientation of small triangles", orientation_kept == trials);
+
+  // The Dirichlet energy of a round sphere's own map is lowest unboosted; a boosted copy
+  // comes back by boost steps alone, the energy going down at each.
+  const I::Triangle_soup soup = bumpy_sphere_with_finger(2, 0.0);
+  I::Triangle_soup round = soup;
+  for(auto& p : round.points) p.normalize();
+  const I::Spherical_energy<SP::Dirichlet_energy> energy(round, SP::Dirichlet_energy());
+  I::Points x = round.points;
+  for(auto& p : x) p = I::mobius_boost(Eigen::Vector3d(0.3, -0.2, 0.1), p);
+  double e = energy.value(x);
+  const double start = e;
+  bool decreasing = true;
+  for(int step = 0; step < 8; ++step) {
+    if(!I::boost_step(x, [&](const I::Points& y) { return energy.value(y); }, e)) break;
+    const double next = energy.value(x);
+    decreasing = decreasing && next < e;
+    e = next;
+  }
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for(const auto& p : x) centroid += p;
+  centroid /= double(x.size());
+  const double unboosted = energy.value(round.points);
+  report("boost steps: the energy decreases at every step", decreasing);
+  report("boost steps: a boosted map comes back to the unboosted energy (rel 1e-6)",
+         (e - unboosted) <= 1e-6 * unboosted, "start " + str(start, 8) + ", end " + str(e, 8) + ", unboosted " + str(unboosted, 8));
+}
+
+} // namespace
+
+int main()
+{
+  rng.seed(7);
+  test_progressive_mesh();
+  test_kernel_placement();
+  test_mean_value_point();
+  test_mobius_boost();
+  std::cout << passed << " passed, " << failed << " failed" << std::endl;
+  return failed == 0 ? 0 : 1;
+}
