@@ -11,6 +11,7 @@
 #include <CGAL/Spherical_parameterization/Sparse_solver_traits.h>
 #include <CGAL/Spherical_parameterization/Weighted_sum_energy.h>
 #include <CGAL/Spherical_parameterization/named_parameters.h>
+#include <CGAL/Spherical_parameterization/internal/Coarse_to_fine.h>
 #include <CGAL/Spherical_parameterization/internal/Newton_solver.h>
 #include <CGAL/Spherical_parameterization/internal/Progressive_mesh.h>
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
@@ -18,7 +19,6 @@
 #include <CGAL/Spherical_parameterization/internal/Untangling_energy.h>
 #include <CGAL/Spherical_parameterization/internal/check_input.h>
 #include <CGAL/Spherical_parameterization/internal/initialization.h>
-#include <CGAL/Spherical_parameterization/internal/kernel_placement.h>
 #include <CGAL/Spherical_parameterization/internal/map_validity.h>
 
 #include <CGAL/Default.h>
@@ -203,16 +203,7 @@ private:
     else return Energy();
   }
 
-  // A mesh the solver runs on: the input, or a coarse level of its progressive mesh.
-  struct Level
-  {
-    internal::Triangle_soup soup;
-    std::vector<int> to_input;  // the input vertex of each level vertex; empty for the input itself
-    std::unique_ptr<Newton> solver;
-
-    std::size_t number_of_vertices() const { return soup.number_of_vertices(); }
-    bool has_fold(const internal::Points& x) const { return internal::count_bad_faces(soup.faces, x) > 0; }
-  };
+  using Level = internal::Level<Newton>;
 
   // The start: the user's map or the last map (re-solve), or for the paper's pipeline its
   // central projection. Empty `x` (robust pipeline from scratch): the coarse-to-fine solve
@@ -348,68 +339,44 @@ private:
   }
 
   // Coarse to fine: the robust stages on the coarsest mesh of a progressive mesh of the
-  // input, then back to the input a level at a time, every vertex split placing the new
-  // vertex inside the kernel of its fan (so the map stays fold-free) and every level
-  // minimizing the user's energy for a few iterations. Only the input level runs to the
-  // tolerance. See doc/NOTES.md for the measurements behind the sizes.
+  // input, then back to the input a level at a time, each level keeping the map fold-free
+  // through its vertex splits (internal::Coarse_to_fine) and minimizing the user's energy.
+  // Only the input level runs to the tolerance. See doc/NOTES.md for the measurements.
   template <class Visitor>
   bool solve_coarse_to_fine(Run& run, internal::Points& x, Visitor& visitor)
   {
     const bool small = input_.number_of_vertices() <= 2 * coarse_vertices;  // no gain in a hierarchy
-    const internal::Progressive_mesh& pm = hierarchy(small ? input_.number_of_vertices() : coarse_vertices);
-    internal::Refinement refinement(pm);
-    std::unique_ptr<Level> level = pm.splits().empty() ? nullptr : make_level(refinement);
+    internal::Coarse_to_fine<Newton> levels(input_.soup, hierarchy(small ? input_.number_of_vertices() : coarse_vertices),
+                                            level_ratio);
     internal::Points level_x;
-    if(!level || !coarse_start(*level, level_x)) {  // the input itself, from its own central projection
+    Level* coarse = levels.level();
+    if(!coarse || !coarse_start(*coarse, level_x)) {  // the input itself, from its own central projection
       if(!coarse_start(input_, x))
         return false;
       robust_stages(run, input_, x, visitor);
       return true;
     }
     x.assign(input_.number_of_vertices(), Eigen::Vector3d::Zero());
-    run.stages += "coarse " + std::to_string(level->number_of_vertices()) + "v:";
-    bool uninterrupted = robust_stages(run, *level, level_x, visitor);
-    scatter(*level, level_x, x);
-
-    internal::Fan fan;
-    std::size_t stuck = 0;  // splits whose fan had an empty kernel
-    const std::vector<std::size_t> sizes = level_sizes(refinement.number_of_vertices());
-    for(std::size_t k = 0; k < sizes.size(); ++k) {
-      while(refinement.number_of_vertices() < sizes[k]) {
-        const internal::Vertex_split& split = refinement.split_next();
-        refinement.fan(split, fan);
-        x[split.removed] = internal::place_in_kernel(x, fan, internal::mean_value_point(split.removed, input_.soup.points, x, fan));
-        stuck += !(internal::fan_clearance(x[split.removed], x, fan) > 0);
-      }
+    run.stages += "coarse " + std::to_string(coarse->number_of_vertices()) + "v:";
+    bool uninterrupted = robust_stages(run, *coarse, level_x, visitor);
+    coarse->scatter(level_x, x);
+    while(levels.refine(x)) {
       if(!uninterrupted)
-        continue;  // only insertions: a valid map of the input, fast
-      const bool is_input = refinement.splits_left() == 0;
-      if(!is_input)
-        level = make_level(refinement);
-      Level& current = is_input ? input_ : *level;
-      if(!is_input)
-        gather(current, x, level_x);
-      internal::Points& y = is_input ? x : level_x;
-      run.stages += std::string(" | ") + (is_input ? "input " : "") + std::to_string(current.number_of_vertices()) + "v:";
+        continue;  // only the splits: a valid map of the input, fast
+      Level* level = levels.level();
+      if(level)
+        level->gather(x, level_x);
+      Level& current = level ? *level : input_;
+      internal::Points& y = level ? level_x : x;
+      run.stages += std::string(" | ") + (level ? "" : "input ") + std::to_string(current.number_of_vertices()) + "v:";
       uninterrupted = current.has_fold(y) ? robust_stages(run, current, y, visitor)
-                                          : minimize_level(run, current, y, visitor, is_input);
-      if(!is_input)
-        scatter(current, y, x);
+                                          : minimize_level(run, current, y, visitor, !level);
+      if(level)
+        level->scatter(y, x);
     }
-    if(stuck > 0)
-      run.stages += " (" + std::to_string(stuck) + " empty kernels)";
+    if(levels.empty_kernels() > 0)
+      run.stages += " (" + std::to_string(levels.empty_kernels()) + " empty kernels)";
     return true;
-  }
-
-  // The refinement levels after the coarsest: sizes growing by a constant ratio to the input.
-  std::vector<std::size_t> level_sizes(std::size_t coarse_vertices) const
-  {
-    const std::size_t n = input_.number_of_vertices();
-    std::vector<std::size_t> sizes;
-    for(double size = double(coarse_vertices) * level_ratio; size * std::sqrt(level_ratio) < double(n); size *= level_ratio)
-      sizes.push_back(std::size_t(size));
-    sizes.push_back(n);
-    return sizes;
   }
 
   // An intermediate level: the user's energy to a loose tolerance, a few iterations.
@@ -447,27 +414,6 @@ private:
     if(!hierarchy_)
       hierarchy_ = std::make_unique<internal::Progressive_mesh>(input_.soup, target_vertices);
     return *hierarchy_;
-  }
-
-  std::unique_ptr<Level> make_level(const internal::Refinement& refinement) const
-  {
-    auto level = std::make_unique<Level>();
-    level->soup = internal::level_soup(input_.soup, refinement, level->to_input);
-    level->solver = std::make_unique<Newton>(level->soup);
-    return level;
-  }
-
-  static void gather(const Level& level, const internal::Points& x, internal::Points& level_x)
-  {
-    level_x.resize(level.to_input.size());
-    for(std::size_t i = 0; i < level.to_input.size(); ++i)
-      level_x[i] = x[level.to_input[i]];
-  }
-
-  static void scatter(const Level& level, const internal::Points& level_x, internal::Points& x)
-  {
-    for(std::size_t i = 0; i < level.to_input.size(); ++i)
-      x[level.to_input[i]] = level_x[i];
   }
 
   // One Newton stage; false if the run was interrupted.
