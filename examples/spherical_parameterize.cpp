@@ -4,8 +4,13 @@
 //                          [--pipeline robust|paper] [--init central|FILE]
 //                          [--max-iterations N] [--time-limit SECONDS] [--no-correction]
 //                          [--triangulate] [--quiet]
+//                          [--remesh-icosphere LEVEL OUT] [--geometry-image N OUT]
+//                          [--map-to OTHER_MESH OTHER_SPHERE OUT [--landmarks FILE]]
+//                          [--texture equirectangular|octahedral OUT.obj]
 //
 // OUTPUT (.off or .obj) has the input's vertices in the same order and the same faces.
+// The options after --quiet use the map once it is computed, and write nothing if it is not
+// valid (see the usage string below for each).
 // Exit status: 0 for a valid map, 2 for a map that is not valid, 1 for bad input or usage.
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -15,15 +20,25 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/spherical_parameterize.h>
+#include <CGAL/Spherical_parameterization/Sphere_point_location.h>
+#include <CGAL/Spherical_parameterization/geometry_image.h>
 #include <CGAL/Spherical_parameterization/measure_distortion.h>
+#include <CGAL/Spherical_parameterization/remesh_on_icosphere.h>
+#include <CGAL/Spherical_parameterization/surface_map.h>
+#include <CGAL/Spherical_parameterization/texture_coordinates.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 namespace SP = CGAL::Spherical_parameterization;
@@ -51,12 +66,38 @@ struct Options
   bool correction = true;
   bool triangulate = false;
   bool quiet = false;
+
+  // Uses of the map, each off unless its output path is set.
+  int icosphere_level = 0;
+  std::string icosphere_output;
+  int image_size = 0;
+  std::string image_output;
+  std::string other_mesh, other_sphere, map_output, landmarks;
+  SP::Texture_layout texture_layout = SP::Texture_layout::EQUIRECTANGULAR;
+  std::string texture_output;
 };
 
 const char* usage =
   "usage: spherical_parameterize [INPUT [OUTPUT]] [--energy tutte|dirichlet|area|stretch|mips|combined]\n"
   "         [--weights A [B]] [--pipeline robust|paper] [--init central|FILE] [--max-iterations N]\n"
-  "         [--time-limit SECONDS] [--no-correction] [--triangulate] [--quiet]\n";
+  "         [--time-limit SECONDS] [--no-correction] [--triangulate] [--quiet]\n"
+  "         [--remesh-icosphere LEVEL OUT] [--geometry-image N OUT]\n"
+  "         [--map-to OTHER_MESH OTHER_SPHERE OUT [--landmarks FILE]]\n"
+  "         [--texture equirectangular|octahedral OUT.obj]\n"
+  "Uses of the map (written only if the map is valid):\n"
+  "  --remesh-icosphere LEVEL OUT   the surface resampled on a geodesic icosphere of subdivision LEVEL\n"
+  "                                 (0 to 9: 20 * 4^LEVEL faces); OUT .off or .obj\n"
+  "  --geometry-image N OUT         the surface sampled on an N x N octahedral grid (N odd, 3 to 4097);\n"
+  "                                 OUT .pfm: the float image (x, y, z per pixel, bottom row first),\n"
+  "                                 OUT .off or .obj: its closed mesh\n"
+  "  --map-to OTHER_MESH OTHER_SPHERE OUT\n"
+  "                                 INPUT with every vertex moved to its image on OTHER_MESH, through\n"
+  "                                 both sphere maps (OTHER_SPHERE: the map of OTHER_MESH as this tool\n"
+  "                                 writes it); OUT .off or .obj\n"
+  "  --landmarks FILE               for --map-to: lines 'I J' pairing vertex I of INPUT with vertex J\n"
+  "                                 of OTHER_MESH (0-based); the spheres are rotated to match them\n"
+  "  --texture LAYOUT OUT.obj       INPUT with texture coordinates from the sphere, vertices split on\n"
+  "                                 the seam (LAYOUT equirectangular or octahedral)\n";
 
 [[noreturn]] void fail(const std::string& message)
 {
@@ -71,6 +112,14 @@ double parse_number(const std::string& flag, const char* text)
   if(end == text || *end != '\0')
     fail(flag + " expects a number, got '" + text + "'");
   return value;
+}
+
+int parse_integer(const std::string& flag, const char* text, int low, int high)
+{
+  const double value = parse_number(flag, text);
+  if(value != std::floor(value) || value < low || value > high)
+    fail(flag + " expects an integer from " + std::to_string(low) + " to " + std::to_string(high) + ", got '" + text + "'");
+  return int(value);
 }
 
 Options parse_options(int argc, char** argv)
@@ -101,6 +150,28 @@ Options parse_options(int argc, char** argv)
     else if(arg == "--no-correction") o.correction = false;
     else if(arg == "--triangulate") o.triangulate = true;
     else if(arg == "--quiet") o.quiet = true;
+    else if(arg == "--remesh-icosphere") {
+      o.icosphere_level = parse_integer(arg, next(), 0, 9);
+      o.icosphere_output = next();
+    }
+    else if(arg == "--geometry-image") {
+      o.image_size = parse_integer(arg, next(), 3, 4097);
+      if(o.image_size % 2 == 0) fail("--geometry-image expects an odd size (the grid must contain the fold lines)");
+      o.image_output = next();
+    }
+    else if(arg == "--map-to") {
+      o.other_mesh = next();
+      o.other_sphere = next();
+      o.map_output = next();
+    }
+    else if(arg == "--landmarks") o.landmarks = next();
+    else if(arg == "--texture") {
+      const std::string layout = next();
+      if(layout == "equirectangular") o.texture_layout = SP::Texture_layout::EQUIRECTANGULAR;
+      else if(layout == "octahedral") o.texture_layout = SP::Texture_layout::OCTAHEDRAL;
+      else fail("--texture expects equirectangular or octahedral");
+      o.texture_output = next();
+    }
     else if(!arg.empty() && arg[0] == '-') fail("unknown option " + arg + "\n" + usage);
     else positional.push_back(arg);
   }
@@ -110,6 +181,7 @@ Options parse_options(int argc, char** argv)
   if(o.output.empty())
     o.output = std::filesystem::path(o.input).stem().string() + "_sphere.off";
   if(o.max_iterations <= 0) fail("--max-iterations must be positive");
+  if(!o.landmarks.empty() && o.map_output.empty()) fail("--landmarks goes with --map-to");
   if(!(o.time_limit >= 0)) fail("--time-limit must be non-negative");
   return o;
 }
@@ -168,12 +240,11 @@ void print_report(const Options& o, const Mesh& mesh, const SP::Result& r, const
 }
 
 // Writes to a temporary file beside the output, then renames it: never a half-written file.
-void write_sphere_mesh(const Mesh& sphere, const std::string& path)
+void write_atomically(const std::string& path, const std::function<bool(const std::string&)>& write)
 {
   const std::string ext = std::filesystem::path(path).extension().string();
-  if(ext != ".off" && ext != ".obj") fail("cannot write " + path + ": use .off or .obj");
   const std::string temporary = path + ".tmp" + std::to_string(getpid()) + ext;
-  if(!CGAL::IO::write_polygon_mesh(temporary, sphere, CGAL::parameters::stream_precision(17))) {
+  if(!write(temporary)) {
     std::remove(temporary.c_str());
     fail("cannot write " + path);
   }
@@ -183,6 +254,23 @@ void write_sphere_mesh(const Mesh& sphere, const std::string& path)
     std::remove(temporary.c_str());
     fail("cannot write " + path + ": " + error.message());
   }
+}
+
+void write_mesh(const Mesh& mesh, const std::string& path)
+{
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if(ext != ".off" && ext != ".obj") fail("cannot write " + path + ": use .off or .obj");
+  write_atomically(path, [&mesh](const std::string& file) {
+    return CGAL::IO::write_polygon_mesh(file, mesh, CGAL::parameters::stream_precision(17));
+  });
+}
+
+void write_stream(const std::string& path, std::ios::openmode mode, const std::function<bool(std::ostream&)>& write)
+{
+  write_atomically(path, [&](const std::string& file) {
+    std::ofstream out(file, mode);
+    return out && write(out) && bool(out.flush());
+  });
 }
 
 template <class NamedParameters>
@@ -207,6 +295,147 @@ SP::Result run(const Options& o, const Mesh& mesh, Mesh::Property_map<Mesh::Vert
   const SP::Result r = CGAL::spherical_parameterize(mesh, sphere, parameters);
   if(show_progress) std::cerr << "\n";
   return r;
+}
+
+// ---------------------------------------------------------------------------------------
+// Uses of a valid map
+
+using Sphere_map = Mesh::Property_map<Mesh::Vertex_index, Point>;
+using Point_location = SP::Sphere_point_location<Mesh>;
+
+std::string extension(const std::string& path) { return std::filesystem::path(path).extension().string(); }
+
+void write_icosphere_remesh(const Options& o, const Point_location& location)
+{
+  Mesh remeshed;
+  if(!SP::remesh_on_icosphere(location, o.icosphere_level, remeshed))
+    fail("the icosphere remesh is not a valid surface mesh");
+  write_mesh(remeshed, o.icosphere_output);
+  if(!o.quiet)
+    std::cout << "icosphere remesh " << o.icosphere_output << ": level " << o.icosphere_level << ", "
+              << remeshed.number_of_vertices() << " vertices, " << remeshed.number_of_faces() << " faces\n";
+}
+
+void write_geometry_image(const Options& o, const Point_location& location)
+{
+  const std::string ext = extension(o.image_output);
+  if(ext != ".pfm" && ext != ".off" && ext != ".obj")
+    fail("cannot write " + o.image_output + ": use .pfm (float image), .off or .obj (mesh)");
+  const SP::Geometry_image image = SP::make_geometry_image(location, o.image_size);
+  if(ext == ".pfm") {
+    write_stream(o.image_output, std::ios::binary,
+                 [&image](std::ostream& out) { return SP::write_geometry_image_PFM(out, image); });
+  } else {
+    Mesh mesh;
+    if(!SP::geometry_image_to_mesh(image, mesh))
+      fail("the geometry image mesh is not a valid surface mesh");
+    write_mesh(mesh, o.image_output);
+  }
+  if(!o.quiet)
+    std::cout << "geometry image   " << o.image_output << ": " << o.image_size << " x " << o.image_size
+              << " octahedral samples\n";
+}
+
+// Lines "I J": vertex I of the input, vertex J of the other mesh; '#' starts a comment.
+std::vector<std::pair<Mesh::Vertex_index, Mesh::Vertex_index>> read_landmarks(const Options& o, std::size_t vertices_a,
+                                                                              std::size_t vertices_b)
+{
+  std::ifstream in(o.landmarks);
+  if(!in) fail("cannot open " + o.landmarks);
+  std::vector<std::pair<Mesh::Vertex_index, Mesh::Vertex_index>> pairs;
+  std::string line;
+  for(int number = 1; std::getline(in, line); ++number) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream fields(line);
+    long long i, j;
+    std::string rest;
+    if(!(fields >> i)) continue;  // blank line or comment
+    if(!(fields >> j) || (fields >> rest) || i < 0 || j < 0 || std::size_t(i) >= vertices_a || std::size_t(j) >= vertices_b)
+      fail(o.landmarks + ":" + std::to_string(number) + ": expected two vertex indices 'I J' below " +
+           std::to_string(vertices_a) + " and " + std::to_string(vertices_b));
+    pairs.emplace_back(Mesh::Vertex_index(std::uint32_t(i)), Mesh::Vertex_index(std::uint32_t(j)));
+  }
+  return pairs;
+}
+
+// Root mean square angle, in degrees, between the landmarks of the input rotated and those of the other sphere.
+template <class Landmarks>
+double landmark_misfit(const Sphere_map& a, const Sphere_map& b, const Landmarks& landmarks, const Eigen::Matrix3d& r)
+{
+  double sum = 0;
+  for(const auto& pair : landmarks) {
+    const Point &p = a[pair.first], &q = b[pair.second];
+    const Eigen::Vector3d x = (r * Eigen::Vector3d(p.x(), p.y(), p.z())).normalized();
+    const Eigen::Vector3d y = Eigen::Vector3d(q.x(), q.y(), q.z()).normalized();
+    sum += CGAL::square(std::atan2(x.cross(y).norm(), x.dot(y)));
+  }
+  return landmarks.empty() ? 0 : std::sqrt(sum / landmarks.size()) * 180 / M_PI;
+}
+
+void write_map_to_other(const Options& o, const Mesh& mesh, const Sphere_map& sphere)
+{
+  Mesh other = read_mesh(o.other_mesh);
+  const Mesh other_points_on_sphere = read_mesh(o.other_sphere);
+  if(other_points_on_sphere.number_of_vertices() != other.number_of_vertices() ||
+     other_points_on_sphere.number_of_faces() != other.number_of_faces())
+    fail(o.other_sphere + " does not have the vertices and faces of " + o.other_mesh);
+  Sphere_map other_sphere = other.add_property_map<Mesh::Vertex_index, Point>("v:sphere", CGAL::ORIGIN).first;
+  auto on_sphere = other_points_on_sphere.vertices().begin();
+  for(auto v : other.vertices()) other_sphere[v] = other_points_on_sphere.point(*on_sphere++);
+  if(!CGAL::is_triangle_mesh(other) || !SP::measure_distortion(other, other_sphere).is_valid())
+    fail(o.other_sphere + " is not a valid sphere map of " + o.other_mesh);
+
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  double misfit = 0;
+  if(!o.landmarks.empty()) {
+    const auto landmarks = read_landmarks(o, mesh.number_of_vertices(), other.number_of_vertices());
+    rotation = SP::rotation_from_landmarks(sphere, other_sphere, landmarks);
+    misfit = landmark_misfit(sphere, other_sphere, landmarks, rotation);
+  }
+  const Point_location on_other(other, other_sphere);
+  Mesh mapped = mesh;  // same vertex indices: the images go straight into its points
+  SP::map_to_surface(mesh, sphere, on_other, mapped.points(), rotation);
+  write_mesh(mapped, o.map_output);
+  if(!o.quiet)
+    std::cout << "map to surface   " << o.map_output << ": the input's vertices on " << o.other_mesh
+              << (o.landmarks.empty() ? std::string() : ", spheres aligned at the landmarks (rms misfit " +
+                                                          std::to_string(misfit) + " deg)")
+              << "\n";
+}
+
+void write_textured_obj(const Options& o, const Mesh& mesh, const Sphere_map& sphere)
+{
+  if(extension(o.texture_output) != ".obj") fail("cannot write " + o.texture_output + ": --texture writes .obj");
+  const SP::Seamed_texture_coordinates texture = SP::seamed_texture_coordinates(mesh, sphere, o.texture_layout);
+  const char* layout = o.texture_layout == SP::Texture_layout::OCTAHEDRAL ? "octahedral" : "equirectangular";
+  write_stream(o.texture_output, std::ios::out, [&](std::ostream& out) {
+    out << "# " << o.input << " with " << layout << " texture coordinates from its spherical map\n";
+    return SP::write_textured_OBJ(out, mesh, texture);
+  });
+  if(!o.quiet)
+    std::cout << "texture          " << o.texture_output << ": " << layout << ", " << texture.uv.size()
+              << " texture coordinates, " << texture.seam_faces << " faces across the seam, "
+              << texture.singular_faces << " around a singular point\n";
+}
+
+bool uses_the_map(const Options& o)
+{
+  return !o.icosphere_output.empty() || !o.image_output.empty() || !o.map_output.empty() || !o.texture_output.empty();
+}
+
+void use_the_map(const Options& o, const Mesh& mesh, const Sphere_map& sphere)
+{
+  if(!o.map_output.empty())
+    write_map_to_other(o, mesh, sphere);
+  if(!o.texture_output.empty())
+    write_textured_obj(o, mesh, sphere);
+  if(o.icosphere_output.empty() && o.image_output.empty())
+    return;
+  const Point_location location(mesh, sphere);
+  if(!o.icosphere_output.empty())
+    write_icosphere_remesh(o, location);
+  if(!o.image_output.empty())
+    write_geometry_image(o, location);
 }
 
 } // namespace
@@ -240,7 +469,11 @@ int main(int argc, char** argv)
   const SP::Distortion_report d = SP::measure_distortion(mesh, sphere);
   Mesh sphere_mesh = mesh;
   for(auto v : sphere_mesh.vertices()) sphere_mesh.point(v) = sphere[v];
-  write_sphere_mesh(sphere_mesh, o.output);
+  write_mesh(sphere_mesh, o.output);
   if(!o.quiet) print_report(o, mesh, r, d);
+  if(d.is_valid())
+    use_the_map(o, mesh, sphere);
+  else if(uses_the_map(o))
+    std::cerr << "spherical_parameterize: the map is not valid: remesh, geometry image, map and texture not written\n";
   return d.is_valid() ? 0 : 2;
 }
