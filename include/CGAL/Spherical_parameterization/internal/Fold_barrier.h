@@ -7,6 +7,7 @@
 #include <CGAL/Spherical_parameterization/Chord_triangle.h>
 #include <CGAL/Spherical_parameterization/Reference_triangle.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -29,6 +30,28 @@ namespace internal {
 struct Fold_barrier
 {
   double activation = 1e-7;
+
+  /// The chord determinant the barrier defends on faces of tiny input area, 100 times the
+  /// degeneracy threshold of the validity contract (`degenerate_determinant`). The relative
+  /// floor alone let a face of input area share 4e-9 (triceratops, Combined (1, 10)) reach
+  /// `det = 8e-15` at an area ratio of 1e-6.
+  static constexpr double determinant_floor = 1e-12;
+
+  /// The activation of a face: `floor`, raised where the face's input area is so small that
+  /// `t = floor` would put its chord determinant below `determinant_floor` (for a conformal
+  /// face, `t = det J / 2 = det(a, b, c) / (4 InputArea)`).
+  static double face_activation(const Jacobian_face_data& d, double floor)
+  {
+    return std::max(floor, determinant_floor * 0.25 / d.input_area);
+  }
+
+  /// The weight of a face's barrier: its input area, but not less than the area below which
+  /// `face_activation()` is raised. Weighted by its own tiny area, the barrier of such a face
+  /// is too weak to hold it (the case above ended at `u = 1e-2` of its activation and below).
+  static double face_weight(const Jacobian_face_data& d, double floor)
+  {
+    return std::max(d.input_area, determinant_floor * 0.25 / floor);
+  }
 
   using Face_data = Jacobian_face_data;
   Face_data face_data(const Reference_triangle& r) const { return Face_data(r); }
@@ -53,7 +76,7 @@ struct Fold_barrier
     const Number det = t.determinant();
     if(!(value_of(det) > 0))
       return Number(std::numeric_limits<double>::infinity());
-    const Number u = scale(t, det, d) * (1 / activation);
+    const Number u = scale(t, det, d) * (1 / face_activation(d, activation));
     const double v = value_of(u);
     if(v >= 1)
       return Number(0.0);
@@ -63,7 +86,7 @@ struct Fold_barrier
     const double b = -w * w * l;
     const double d1 = 2 * w * l - w * w / v;
     const double d2 = -2 * l + 4 * w / v + w * w / (v * v);
-    return chain(u, b, d1, d2) * d.input_area;
+    return chain(u, b, d1, d2) * face_weight(d, activation);
   }
 };
 

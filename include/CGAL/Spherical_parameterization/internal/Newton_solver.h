@@ -197,7 +197,7 @@ public:
   }
 
   /// True if every face is positively oriented (beyond the degeneracy threshold) and at or
-  /// above `floor` on the scale of `Fold_barrier`.
+  /// above its activation for `floor` on the scale of `Fold_barrier` (`face_activation()`).
   bool is_above_floor(const Points& x, double floor)
   {
     face_value_.resize(faces_->size());
@@ -205,7 +205,8 @@ public:
       const auto& t = (*faces_)[f];
       const Chord_triangle<double> chord(x[t[0]], x[t[1]], x[t[2]]);
       const double det = chord.determinant();
-      face_value_[f] = det > degenerate_determinant && Fold_barrier::scale(chord, det, barrier_data_[f]) >= floor;
+      face_value_[f] = det > degenerate_determinant && Fold_barrier::scale(chord, det, barrier_data_[f]) >=
+                                                                  Fold_barrier::face_activation(barrier_data_[f], floor);
     });
     return std::find(face_value_.begin(), face_value_.end(), 0.0) == face_value_.end();
   }
