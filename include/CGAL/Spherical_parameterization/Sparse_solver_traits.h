@@ -7,6 +7,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
+#include <CGAL/Spherical_parameterization/internal/blas_threads.h>
 #include <Eigen/CholmodSupport>
 #endif
 
@@ -44,6 +45,10 @@ private:
 /// \ingroup PkgSphericalParameterizationRef
 /// The same with CHOLMOD's supernodal Cholesky factorization (SuiteSparse), about twice as
 /// fast on large meshes. Available when `CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD` is defined.
+/// When the BLAS is OpenBLAS, its factorizations and solves run on one BLAS thread less than
+/// the cores (one on two cores; the count is restored after each): OpenBLAS's spinning
+/// threads slow down badly when another process holds a core. Define `CGAL_SPHERICAL_PARAMETERIZATION_KEEP_BLAS_THREADS` to keep
+/// OpenBLAS's own setting (up to 15% faster on an idle machine).
 /// \cgalModels `SphericalSparseSolverTraits`
 class Cholmod_traits
 {
@@ -57,10 +62,15 @@ public:
   void analyze_pattern(const Matrix& m) { solver_.analyzePattern(m); }
   bool factorize(const Matrix& m)
   {
+    const internal::Blas_thread_slack slack;
     solver_.factorize(m);
     return solver_.info() == Eigen::Success;
   }
-  Vector solve(const Vector& b) const { return solver_.solve(b); }
+  Vector solve(const Vector& b) const
+  {
+    const internal::Blas_thread_slack slack;
+    return solver_.solve(b);
+  }
   /// \endcond
 
 private:
