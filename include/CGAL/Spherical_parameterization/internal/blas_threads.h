@@ -22,33 +22,49 @@ namespace internal {
 /// CHOLMOD factorization with two BLAS threads on two cores slows down badly: bunny00 after
 /// one subdivision (302k faces), Combined (1, 1), took 18.5 s against 12.0 s with one BLAS
 /// thread while one core was busy, and once 443 s against 14 s while a build ran. On an idle
-/// machine one thread costs 8 to 15% (9.3 -> 10.7 s; bunny00 1.7 -> 1.85 s). On more cores
-/// the factorization keeps most of its parallel speed-up.
+/// machine one thread costs 13 to 22% (10.2 -> 11.5 s; bunny00 1.62 -> 1.98 s), 13% in the
+/// median of the benchmark. On more cores the factorization keeps most of its parallel speed-up.
 class Blas_thread_slack
 {
 public:
   Blas_thread_slack()
   {
-#if defined(__unix__) && !defined(CGAL_SPHERICAL_PARAMETERIZATION_KEEP_BLAS_THREADS)
-    const auto get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-    set_ = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-    if(get && set_) {
-      saved_ = get();
+    const Openblas& blas = openblas();
+    if(blas.get && blas.set) {
+      saved_ = blas.get();
       if(saved_ > 1)
-        set_(saved_ - 1);
+        blas.set(saved_ - 1);
     }
-#endif
   }
   ~Blas_thread_slack()
   {
-    if(set_ && saved_ > 1)
-      set_(saved_);
+    if(saved_ > 1)
+      openblas().set(saved_);
   }
   Blas_thread_slack(const Blas_thread_slack&) = delete;
   Blas_thread_slack& operator=(const Blas_thread_slack&) = delete;
 
 private:
-  void (*set_)(int) = nullptr;
+  struct Openblas
+  {
+    int (*get)() = nullptr;
+    void (*set)(int) = nullptr;
+  };
+
+  // Looked up once: a factorization and its solves each construct one of these.
+  static const Openblas& openblas()
+  {
+    static const Openblas functions = [] {
+      Openblas f;
+#if defined(__unix__) && !defined(CGAL_SPHERICAL_PARAMETERIZATION_KEEP_BLAS_THREADS)
+      f.get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+      f.set = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+#endif
+      return f;
+    }();
+    return functions;
+  }
+
   int saved_ = 0;
 };
 
