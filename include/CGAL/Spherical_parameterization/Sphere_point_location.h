@@ -5,6 +5,7 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_SPHERE_POINT_LOCATION_H
 
 #include <CGAL/Spherical_parameterization/internal/Spherical_triangulation.h>
+#include <CGAL/Spherical_parameterization/internal/indexed_triangles.h>
 
 #include <CGAL/Default.h>
 #include <CGAL/Named_function_parameters.h>
@@ -21,7 +22,6 @@
 #include <boost/property_map/property_map.hpp>
 #include <cstddef>
 #include <type_traits>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -135,9 +135,9 @@ public:
     return to_location(triangulation_.locate(d.normalized(), int(hint.face_index)));
   }
   /// The face containing the direction `d` (any nonzero length), given as a CGAL vector.
-  Location locate(const Vector_3& d) const { return locate(to_eigen(d)); }
+  Location locate(const Vector_3& d) const { return locate(internal::to_eigen(d)); }
   /// The direction from the centre to `p`.
-  Location locate(const Point_3& p) const { return locate(to_eigen(p - CGAL::ORIGIN)); }
+  Location locate(const Point_3& p) const { return locate(internal::to_eigen(p - CGAL::ORIGIN)); }
 
   /// The point of the input surface at `location`: the barycentric combination of its
   /// corners' input positions.
@@ -188,12 +188,6 @@ private:
   std::vector<Eigen::Vector3d> positions_;
   internal::Spherical_triangulation triangulation_;
 
-  template <class Vector>
-  static Eigen::Vector3d to_eigen(const Vector& v)
-  {
-    return Eigen::Vector3d(CGAL::to_double(v.x()), CGAL::to_double(v.y()), CGAL::to_double(v.z()));
-  }
-
   static Point_3 to_point(const Eigen::Vector3d& p) { return Point_3(p.x(), p.y(), p.z()); }
 
   template <class VertexValue>
@@ -213,28 +207,15 @@ private:
     using CGAL::parameters::get_parameter;
     const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                       get_const_property_map(CGAL::vertex_point, tm));
-    std::unordered_map<vertex_descriptor, int> index;
+    internal::Indexed_triangles<TriangleMesh> mesh = internal::indexed_triangles(tm);
     internal::Points sphere;
-    for(vertex_descriptor v : vertices(tm)) {
-      index.emplace(v, int(vertex_descriptors_.size()));
-      vertex_descriptors_.push_back(v);
-      positions_.push_back(to_eigen(get(vpm, v)));
-      sphere.push_back(to_eigen(get(sphere_map, v)).normalized());
+    for(vertex_descriptor v : mesh.vertices) {
+      positions_.push_back(internal::to_eigen(get(vpm, v)));
+      sphere.push_back(internal::to_eigen(get(sphere_map, v)).normalized());
     }
-    internal::Faces triangles;
-    for(face_descriptor f : faces(tm)) {
-      std::array<int, 3> t{{0, 0, 0}};
-      int k = 0;
-      for(vertex_descriptor v : vertices_around_face(halfedge(f, tm), tm)) {
-        if(k < 3)
-          t[k] = index.at(v);
-        ++k;
-      }
-      CGAL_precondition(k == 3);
-      face_descriptors_.push_back(f);
-      triangles.push_back(t);
-    }
-    return internal::Spherical_triangulation(std::move(sphere), std::move(triangles));
+    vertex_descriptors_ = std::move(mesh.vertices);
+    face_descriptors_.assign(faces(tm).begin(), faces(tm).end());
+    return internal::Spherical_triangulation(std::move(sphere), std::move(mesh.triangles));
   }
 
   Location to_location(const internal::Face_hit& hit) const

@@ -18,6 +18,7 @@
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
 #include <CGAL/Spherical_parameterization/internal/Untangling_energy.h>
 #include <CGAL/Spherical_parameterization/internal/check_input.h>
+#include <CGAL/Spherical_parameterization/internal/indexed_triangles.h>
 #include <CGAL/Spherical_parameterization/internal/initialization.h>
 #include <CGAL/Spherical_parameterization/internal/map_validity.h>
 
@@ -99,25 +100,16 @@ public:
     if(report.code != Error_code::OK)
       return report.code;
 
-    vertices_.assign(vertices(tm).begin(), vertices(tm).end());
-    std::unordered_map<vertex_descriptor, int> index;
+    internal::Indexed_triangles<TriangleMesh> mesh = internal::indexed_triangles(tm);
+    vertices_ = std::move(mesh.vertices);
     internal::Points points;
     for(vertex_descriptor v : vertices_) {
-      index.emplace(v, int(points.size()));
       const auto& p = get(vpm, v);
       points.emplace_back(CGAL::to_double(traits_.compute_x_3_object()(p)),
                           CGAL::to_double(traits_.compute_y_3_object()(p)),
                           CGAL::to_double(traits_.compute_z_3_object()(p)));
     }
-    internal::Faces triangles;
-    for(auto f : faces(tm)) {
-      std::array<int, 3> t;
-      int k = 0;
-      for(vertex_descriptor v : vertices_around_face(halfedge(f, tm), tm))
-        t[k++] = index.at(v);
-      triangles.push_back(t);
-    }
-    input_.soup = internal::make_triangle_soup(std::move(points), std::move(triangles));
+    input_.soup = internal::make_triangle_soup(std::move(points), std::move(mesh.triangles));
     input_.solver = std::make_unique<Newton>(input_.soup);
     return Error_code::OK;
   }

@@ -64,8 +64,7 @@ Geometry_image make_geometry_image(const Sphere_point_location<TriangleMesh, Geo
     auto previous = location.locate(octahedral_square_to_sphere(image.square_point(0, row)));
     for(int column = 0; column < size; ++column) {
       previous = location.locate(octahedral_square_to_sphere(image.square_point(column, row)), previous);
-      const auto p = location.surface_point(previous);
-      image.samples.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+      image.samples.push_back(internal::to_eigen(location.surface_point(previous)));
     }
   }
   return image;

@@ -5,6 +5,7 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_MEASURE_DISTORTION_H
 
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/indexed_triangles.h>
 #include <CGAL/Spherical_parameterization/internal/map_validity.h>
 
 #include <CGAL/Named_function_parameters.h>
@@ -21,7 +22,6 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -253,12 +253,6 @@ inline Distortion_report measure_soup(const Triangle_soup& soup, const Points& x
   return report;
 }
 
-/// A point of any CGAL kernel as an Eigen vector.
-template <class Point>
-Eigen::Vector3d to_eigen(const Point& p)
-{
-  return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-}
 
 } // namespace internal
 
@@ -302,26 +296,13 @@ Distortion_report measure_distortion(const TriangleMesh& tm, const SphereMap& sp
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                     get_const_property_map(CGAL::vertex_point, tm));
 
-  std::unordered_map<vertex_descriptor, int> index;
+  const internal::Indexed_triangles<TriangleMesh> mesh = internal::indexed_triangles(tm);
   std::vector<Eigen::Vector3d> points, sphere_points;
-  for(vertex_descriptor v : vertices(tm)) {
-    index.emplace(v, int(points.size()));
+  for(vertex_descriptor v : mesh.vertices) {
     points.push_back(internal::to_eigen(get(vpm, v)));
     sphere_points.push_back(internal::to_eigen(get(sphere_map, v)));
   }
-  std::vector<std::array<int, 3>> triangles;
-  for(auto f : faces(tm)) {
-    std::array<int, 3> t;
-    int k = 0;
-    for(vertex_descriptor v : vertices_around_face(halfedge(f, tm), tm)) {
-      if(k < 3)  // never write past the triangle, even with preconditions disabled
-        t[k] = index.at(v);
-      ++k;
-    }
-    CGAL_precondition(k == 3);
-    triangles.push_back(t);
-  }
-  return measure_distortion(points, sphere_points, triangles);
+  return measure_distortion(points, sphere_points, mesh.triangles);
 }
 
 } // namespace Spherical_parameterization

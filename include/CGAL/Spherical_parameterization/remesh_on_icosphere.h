@@ -95,10 +95,8 @@ bool remesh_on_icosphere(const Sphere_point_location<TriangleMesh, GeomTraits>& 
   const Icosphere icosphere = make_icosphere(level);
   std::vector<Eigen::Vector3d> surface_points;
   surface_points.reserve(icosphere.points.size());
-  for(const Eigen::Vector3d& q : icosphere.points) {
-    const auto p = location.surface_point(q);
-    surface_points.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-  }
+  for(const Eigen::Vector3d& q : icosphere.points)
+    surface_points.push_back(internal::to_eigen(location.surface_point(q)));
   const auto vertices = internal::add_triangles(surface_points, icosphere.faces, location.inward_oriented(), out);
   for(std::size_t i = 0; i < vertices.size(); ++i) {
     const Eigen::Vector3d& q = icosphere.points[i];

@@ -5,6 +5,7 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_SURFACE_MAP_H
 
 #include <CGAL/Spherical_parameterization/Sphere_point_location.h>
+#include <CGAL/Spherical_parameterization/internal/indexed_triangles.h>
 
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/number_utils.h>
@@ -59,13 +60,10 @@ template <class SphereMapA, class SphereMapB, class LandmarkRange>
 Eigen::Matrix3d rotation_from_landmarks(const SphereMapA& sphere_a, const SphereMapB& sphere_b,
                                         const LandmarkRange& landmarks)
 {
-  auto unit = [](const auto& p) {
-    return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())).normalized();
-  };
   std::vector<Eigen::Vector3d> from, to;
   for(const auto& pair : landmarks) {
-    from.push_back(unit(get(sphere_a, pair.first)));
-    to.push_back(unit(get(sphere_b, pair.second)));
+    from.push_back(internal::to_eigen(get(sphere_a, pair.first)).normalized());
+    to.push_back(internal::to_eigen(get(sphere_b, pair.second)).normalized());
   }
   return best_rotation(from, to);
 }
@@ -87,11 +85,8 @@ void map_to_surface(const TriangleMeshA& tm_a, const SphereMapA& sphere_a,
                     const Sphere_point_location<TriangleMeshB, GeomTraitsB>& surface_b, OutputPointMap out,
                     const Eigen::Matrix3d& rotation = Eigen::Matrix3d::Identity())
 {
-  for(auto v : vertices(tm_a)) {
-    const auto& p = get(sphere_a, v);
-    const Eigen::Vector3d d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-    put(out, v, surface_b.surface_point(Eigen::Vector3d(rotation * d)));
-  }
+  for(auto v : vertices(tm_a))
+    put(out, v, surface_b.surface_point(Eigen::Vector3d(rotation * internal::to_eigen(get(sphere_a, v)))));
 }
 
 } // namespace Spherical_parameterization

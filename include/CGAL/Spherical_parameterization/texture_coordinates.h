@@ -4,6 +4,7 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_TEXTURE_COORDINATES_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_TEXTURE_COORDINATES_H
 
+#include <CGAL/Spherical_parameterization/internal/indexed_triangles.h>
 #include <CGAL/Spherical_parameterization/octahedral_map.h>
 
 #include <CGAL/Named_function_parameters.h>
@@ -209,12 +210,10 @@ Seamed_texture_coordinates seamed_texture_coordinates(const TriangleMesh& tm, co
   using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
   const internal::Texture_chart chart(layout, octahedral_margin);
   Seamed_texture_coordinates result;
-  std::unordered_map<vertex_descriptor, int> index;
+  const internal::Indexed_triangles<TriangleMesh> mesh = internal::indexed_triangles(tm);
   std::vector<Eigen::Vector3d> sphere;
-  for(vertex_descriptor v : vertices(tm)) {
-    const auto& p = get(sphere_map, v);
-    index.emplace(v, int(sphere.size()));
-    sphere.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  for(vertex_descriptor v : mesh.vertices) {
+    sphere.push_back(internal::to_eigen(get(sphere_map, v)));
     result.uv.push_back(chart.to_texture(chart.chart_point(sphere.back())));
   }
   // The copies of each vertex made so far, so that faces sharing a copy share its index.
@@ -231,15 +230,7 @@ Seamed_texture_coordinates seamed_texture_coordinates(const TriangleMesh& tm, co
   };
   const std::vector<Eigen::Vector3d> singular = chart.singular_points();
   double overhang = 0;
-  for(auto f : faces(tm)) {
-    std::array<int, 3> corner{{0, 0, 0}};
-    int k = 0;
-    for(vertex_descriptor v : vertices_around_face(halfedge(f, tm), tm)) {
-      if(k < 3)
-        corner[k] = index.at(v);
-      ++k;
-    }
-    CGAL_precondition(k == 3);
+  for(const std::array<int, 3>& corner : mesh.triangles) {
     const std::array<Eigen::Vector3d, 3> x{{sphere[corner[0]], sphere[corner[1]], sphere[corner[2]]}};
     const std::array<Eigen::Vector2d, 3> unfolded = internal::unfold_face(chart, x);
     if(layout == Texture_layout::OCTAHEDRAL)
