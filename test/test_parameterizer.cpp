@@ -483,6 +483,31 @@ void test_class(Mesh& mesh, const std::string& mesh_name)
 }
 
 // ---------------------------------------------------------------------------------------
+// Stopping: the map returned is a minimum to the tolerance
+
+// Newton from the returned map, on the same energy, to a much tighter tolerance: it must find
+// (almost) nothing left to gain. Guards the stopping rules (decrement test, quadratic tail,
+// predicted decrement) against stopping early.
+template <class Energy>
+void test_converged(Mesh& mesh, const std::string& mesh_name, const std::string& energy_name, const Energy& energy)
+{
+  Section_timer timer("converged " + energy_name);
+  const std::string name = "[" + mesh_name + ", " + energy_name + ", re-solved from its own map]";
+  Sphere_map map = new_sphere_map(mesh, "v:converged"), again = new_sphere_map(mesh, "v:again");
+  const SP::Result first = CGAL::spherical_parameterize(mesh, map, SP::parameters::energy(energy));
+  const SP::Result second = CGAL::spherical_parameterize(
+    mesh, again,
+    SP::parameters::pipeline(SP::Pipeline::PAPER,
+                             SP::parameters::initial_sphere_map(map, SP::parameters::tolerance(1e-12, SP::parameters::energy(energy)))));
+  const double gain = (first.energy - second.energy) / std::abs(first.energy);
+  report(name + ": the energy goes down by less than 10x the default tolerance (1e-6)",
+         first.is_valid() && std::isfinite(second.energy) && gain < 1e-5,
+         "first " + str(first.energy) + ", re-solved " + str(second.energy) + ", relative gain " + str(gain));
+  mesh.remove_property_map(map);
+  mesh.remove_property_map(again);
+}
+
+// ---------------------------------------------------------------------------------------
 // Visitor, time limit
 
 void test_interruptions(Mesh& mesh, const std::string& mesh_name)
@@ -684,6 +709,8 @@ int main(int argc, char** argv)
     test_paper_pipeline(triceratops, "triceratops", "Tutte", SP::Tutte_energy());
     test_paper_pipeline(triceratops, "triceratops", "Dirichlet", SP::Dirichlet_energy());
     test_paper_pipeline(triceratops, "triceratops", "combined(1,1)", SP::combined_energy(1, 1));
+    test_converged(triceratops, "triceratops", "Tutte", SP::Tutte_energy());
+    test_converged(triceratops, "triceratops", "combined(1,1)", SP::combined_energy(1, 1));
     test_class(triceratops, "triceratops");
     test_interruptions(triceratops, "triceratops");
     test_inward(triceratops, "triceratops");

@@ -377,8 +377,12 @@ private:
   {
     // One block Jacobi step after the splits halved the Newton iterations of bunny00 after
     // one subdivision (7 -> 3): most of the error a split leaves is local.
-    if(is_input)
-      return minimize_fold_free(run, level, x, visitor, "target", 1);
+    if(is_input) {
+      run.options.predict_convergence = true;
+      const bool uninterrupted = minimize_fold_free(run, level, x, visitor, "target", 1);
+      run.options.predict_convergence = false;
+      return uninterrupted;
+    }
     const internal::Newton_options saved = run.options;
     run.options.max_iterations = std::min<std::size_t>(run.options.max_iterations, level_iterations);
     run.options.tolerance = std::max(run.options.tolerance, level_tolerance);
