@@ -8,6 +8,7 @@
 #include <CGAL/Spherical_parameterization/internal/indexed_triangles.h>
 
 #include <CGAL/Default.h>
+#include <CGAL/Kernel/global_functions.h>
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/assertions.h>
 #include <CGAL/boost/graph/helpers.h>
