@@ -14,6 +14,7 @@
 #include <CGAL/Spherical_parameterization/internal/kernel_placement.h>
 #include <CGAL/Spherical_parameterization/internal/map_validity.h>
 #include <CGAL/Spherical_parameterization/internal/mobius_boost.h>
+#include <CGAL/Spherical_parameterization/remesh_on_icosphere.h>
 
 #include "test_support.h"
 
@@ -39,32 +40,9 @@ namespace {
 // finger grown out of it (a protrusion, like a leg), so that the decimation meets both.
 I::Triangle_soup bumpy_sphere_with_finger(int level, double bumps)
 {
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  I::Points p{{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-              {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  I::Faces f{{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-             {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-             {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-  for(auto& q : p) q.normalize();
-  for(int l = 0; l < level; ++l) {
-    std::map<std::pair<int, int>, int> middle;
-    auto mid = [&](int a, int b) {
-      const auto key = std::minmax(a, b);
-      const auto found = middle.find(key);
-      if(found != middle.end()) return found->second;
-      p.push_back((p[a] + p[b]).normalized());
-      return middle[key] = int(p.size()) - 1;
-    };
-    I::Faces next;
-    for(const auto& t3 : f) {
-      const int ab = mid(t3[0], t3[1]), bc = mid(t3[1], t3[2]), ca = mid(t3[2], t3[0]);
-      next.push_back({t3[0], ab, ca});
-      next.push_back({t3[1], bc, ab});
-      next.push_back({t3[2], ca, bc});
-      next.push_back({ab, bc, ca});
-    }
-    f.swap(next);
-  }
+  SP::Icosphere sphere = SP::make_icosphere(level);
+  I::Points p = std::move(sphere.points);
+  I::Faces f = std::move(sphere.faces);
   // The finger: the vertices within a small cap around +z are pulled out along z.
   for(auto& q : p) {
     const double cap = q.z() - 0.9;

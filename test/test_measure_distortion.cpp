@@ -6,6 +6,7 @@
 // Usage: test_measure_distortion [directory holding triceratops.off]
 
 #include <CGAL/Spherical_parameterization/measure_distortion.h>
+#include <CGAL/Spherical_parameterization/remesh_on_icosphere.h>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -45,36 +46,11 @@ struct Mesh
   Faces faces;
 };
 
-// The icosahedron, faces oriented outward, split `levels` times, every point on the sphere.
+// The package's icosphere (`make_icosphere()`): faces oriented outward, every point on the sphere.
 Mesh icosphere(int levels)
 {
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  Mesh m;
-  m.points = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-              {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  m.faces = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-             {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-             {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-  for(auto& p : m.points)
-    p.normalize();
-  for(int level = 0; level < levels; ++level) {
-    std::map<std::pair<int, int>, int> midpoint;  // shared by the two faces of an edge
-    auto middle = [&](int i, int j) {
-      const auto key = std::minmax(i, j);
-      const auto found = midpoint.find(key);
-      if(found != midpoint.end())
-        return found->second;
-      m.points.push_back((m.points[i] + m.points[j]).normalized());
-      return midpoint[key] = int(m.points.size()) - 1;
-    };
-    Faces finer;
-    for(const auto& f : m.faces) {
-      const int a = middle(f[0], f[1]), b = middle(f[1], f[2]), c = middle(f[2], f[0]);
-      finer.insert(finer.end(), {{f[0], a, c}, {f[1], b, a}, {f[2], c, b}, {a, b, c}});
-    }
-    m.faces = std::move(finer);
-  }
-  return m;
+  SP::Icosphere s = SP::make_icosphere(levels);
+  return {std::move(s.points), std::move(s.faces)};
 }
 
 // Every field of two reports agrees (counts exactly, numbers to `tolerance`).

@@ -21,6 +21,7 @@
 #include <CGAL/spherical_parameterize.h>
 #include <CGAL/Spherical_parameterization/Spherical_parameterizer_3.h>
 #include <CGAL/Spherical_parameterization/measure_distortion.h>
+#include <CGAL/Spherical_parameterization/remesh_on_icosphere.h>
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
 
@@ -106,40 +107,13 @@ std::vector<std::vector<std::size_t>> polygons_of(const Triangles& triangles)
   return polygons;
 }
 
-/// The icosphere: the icosahedron subdivided `level` times (each triangle into four, new
-/// points pushed to the unit sphere), faces counterclockwise from outside. The first 12
-/// points are the icosahedron's, the next 30 those of level 1, and so on.
+/// The icosphere of the package (`make_icosphere()`): faces counterclockwise from outside, the
+/// first 12 points the icosahedron's, the next 30 those of level 1, and so on.
 void icosphere(int level, Points& points, Triangles& triangles)
 {
-  const double g = (1 + std::sqrt(5.0)) / 2;
-  points = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-            {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-  for(auto& p : points) p.normalize();
-  triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-               {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-               {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-  for(auto& t : triangles)  // orient outward whatever the table says
-    if(points[t[0]].dot(points[t[1]].cross(points[t[2]])) < 0) std::swap(t[1], t[2]);
-  for(int l = 0; l < level; ++l) {
-    std::map<std::pair<int, int>, int> middle;
-    auto midpoint = [&](int a, int b) {
-      const std::pair<int, int> key(std::min(a, b), std::max(a, b));
-      auto it = middle.find(key);
-      if(it != middle.end()) return it->second;
-      points.push_back((points[a] + points[b]).normalized());
-      middle.emplace(key, int(points.size()) - 1);
-      return int(points.size()) - 1;
-    };
-    Triangles finer;
-    for(const auto& t : triangles) {
-      const int ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
-      finer.push_back({t[0], ab, ca});
-      finer.push_back({t[1], bc, ab});
-      finer.push_back({t[2], ca, bc});
-      finer.push_back({ab, bc, ca});
-    }
-    triangles = finer;
-  }
+  SP::Icosphere s = SP::make_icosphere(level);
+  points = std::move(s.points);
+  triangles = std::move(s.faces);
 }
 
 /// A bumpy, elongated genus-0 surface: the level-3 icosphere with its radius modulated and
