@@ -24,6 +24,9 @@
 #include <CGAL/Spherical_parameterization/remesh_on_icosphere.h>
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
+#include <CGAL/Spherical_parameterization/internal/Vertex_ordered_cholmod.h>
+#endif
 
 #include "test_support.h"
 
@@ -659,6 +662,61 @@ void test_sample(const std::string& file, const std::string& energy_name, const 
   solve_and_check(name, mesh, SP::parameters::energy(energy));
 }
 
+/// The CHOLMOD factorization ordered on the vertex graph (used from 50000 vertices on, so
+/// tested here directly on a small mesh): it must analyse with the given ordering and solve
+/// a 2x2-block system of a mesh's pattern as exactly as Eigen's LDLT does.
+void test_vertex_ordered_cholmod()
+{
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
+  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+  const SP::Icosphere sphere = SP::make_icosphere(4);
+  const int n = int(sphere.points.size());
+  // Lower triangle of a block Laplacian-like matrix with random symmetric 2x2 blocks,
+  // made positive definite by its diagonal.
+  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<double> row_sum(2 * n, 0.0);
+  for(const auto& t : sphere.faces)
+    for(int a = 0; a < 3; ++a) {
+      const int i = t[a];
+      const int j = t[(a + 1) % 3];
+      const int later = std::max(i, j);
+      const int earlier = std::min(i, j);
+      for(int r = 0; r < 2; ++r)
+        for(int c = 0; c < 2; ++c) {
+          const double value = uniform(-1, 1);
+          entries.emplace_back(2 * later + r, 2 * earlier + c, value);
+          row_sum[2 * later + r] += std::abs(value);
+          row_sum[2 * earlier + c] += std::abs(value);
+        }
+    }
+  for(int k = 0; k < 2 * n; ++k)
+    entries.emplace_back(k, k, row_sum[k] + 1);
+  Matrix m(2 * n, 2 * n);
+  m.setFromTriplets(entries.begin(), entries.end());
+  Eigen::VectorXd b = Eigen::VectorXd::Random(2 * n);
+
+  SP::internal::Vertex_ordered_cholmod<Matrix> cholmod;
+  cholmod.cholmod().print = 0;
+  const bool analysed = cholmod.analyze_pattern_by_vertices(m);
+  Eigen::SimplicialLDLT<Matrix, Eigen::Lower> reference(m);
+  const Eigen::VectorXd expected = reference.solve(b);
+  double error = std::numeric_limits<double>::infinity();
+  if(analysed) {
+    cholmod.factorize(m);
+    if(cholmod.info() == Eigen::Success)
+      error = (cholmod.solve(b) - expected).norm() / expected.norm();
+  }
+  report("[vertex-ordered CHOLMOD, icosphere level 4, " + std::to_string(2 * n) + " unknowns] analysed: " +
+           (analysed ? "yes" : "no") + ", relative difference to Eigen's LDLT " + str(error),
+         analysed && error < 1e-10);
+  Matrix three(3, 3);  // an odd size has no 2x2 blocks: refused, nothing analysed
+  three.setIdentity();
+  report("[vertex-ordered CHOLMOD] a matrix of odd size is refused", !cholmod.analyze_pattern_by_vertices(three));
+#else
+  skip("[vertex-ordered CHOLMOD]", "built without CHOLMOD");
+#endif
+}
+
 int main(int argc, char** argv)
 {
   rng.seed(77);
@@ -667,6 +725,7 @@ int main(int argc, char** argv)
   const auto start = std::chrono::steady_clock::now();
 
   test_icosphere();
+  test_vertex_ordered_cholmod();
   test_mesh_types();
   test_bad_input();
 
