@@ -29,8 +29,6 @@ namespace internal {
 template <class Matrix>
 class Vertex_ordered_cholmod : public Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower>
 {
-  using Base = Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower>;
-
 public:
   /// Symbolic analysis of `m` (of even size) with the METIS ordering of its vertex graph;
   /// false, with nothing analysed, if CHOLMOD could not provide it (built without METIS).
