@@ -4,11 +4,14 @@
 // The parts of the robust pipeline's coarse-to-fine solve, each against the property it is
 // there for: the progressive mesh (a closed genus-0 manifold at every level, undone exactly,
 // area shares kept), the fans of the vertex splits, the placement of a split vertex in the
-// kernel of its fan, the mean value point, and the Moebius boost.
+// kernel of its fan, the mean value point, the Moebius boost, and the floor patch.
 // Meshes built in code only (the `fast` CTest label, also run under the sanitizers).
 // Usage: test_coarse_to_fine [ignored arguments]
 
 #include <CGAL/Spherical_parameterization/Dirichlet_energy.h>
+#include <CGAL/Spherical_parameterization/Sparse_solver_traits.h>
+#include <CGAL/Spherical_parameterization/internal/Floor_patch.h>
+#include <CGAL/Spherical_parameterization/internal/Newton_solver.h>
 #include <CGAL/Spherical_parameterization/internal/Progressive_mesh.h>
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/kernel_placement.h>
@@ -17,6 +20,8 @@
 #include <CGAL/Spherical_parameterization/remesh_on_icosphere.h>
 
 #include "test_support.h"
+
+#include <CGAL/tags.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -261,6 +266,80 @@ void test_mobius_boost()
          (e - unboosted) <= 1e-6 * unboosted, "start " + str(start, 8) + ", end " + str(e, 8) + ", unboosted " + str(unboosted, 8));
 }
 
+// The floor patch: the neighbourhood of the faces a fold barrier holds, minimized with the
+// rest of the map held. It holds every face around its free vertices, so that its energy
+// changes as the whole map's does; its held vertices do not move; the barrier lifts its faces.
+void test_floor_patch()
+{
+  const I::Triangle_soup soup = bumpy_sphere_with_finger(3, 0.05);
+  const I::Points x = SP::make_icosphere(3).points;  // the bumps and the finger are radial: a map
+  using Newton = I::Newton_solver<SP::Eigen_sparse_LDLT_traits, CGAL::Sequential_tag>;
+  Newton whole(soup);
+  auto face_scale = [&](const I::Triangle_soup& s, const I::Points& y, std::size_t f) {
+    const auto& t = s.faces[f];
+    const SP::Chord_triangle<double> chord(y[t[0]], y[t[1]], y[t[2]]);
+    return I::Fold_barrier::scale(chord, chord.determinant(), I::Fold_barrier::Face_data(s.reference_triangle(f)));
+  };
+  std::vector<double> scales;
+  for(std::size_t f = 0; f < soup.faces.size(); ++f)
+    scales.push_back(face_scale(soup, x, f));
+  std::sort(scales.begin(), scales.end());
+  const double floor = 2 * scales[4];  // the finger's faces, squeezed by the projection
+  const std::vector<int> under = whole.faces_under_floor(x, floor);
+  report("floor patch: the faces under the floor are found", under.size() >= 5 && under.size() < soup.faces.size() / 4,
+         str(under.size()) + " of " + str(soup.faces.size()));
+
+  const I::Floor_patch patch = I::make_floor_patch(soup, under, 2);
+  std::vector<char> is_free(soup.number_of_vertices(), 0);
+  for(std::size_t i = 0; i < patch.free_vertices; ++i) is_free[patch.to_input[i]] = 1;
+  bool seeds_free = true;
+  for(int f : under)
+    for(int v : soup.faces[f]) seeds_free = seeds_free && is_free[v];
+  std::set<std::array<int, 3>> around_free, in_patch;
+  for(const auto& t : soup.faces)
+    if(is_free[t[0]] || is_free[t[1]] || is_free[t[2]]) around_free.insert(t);
+  for(const auto& t : patch.soup.faces)
+    in_patch.insert({patch.to_input[t[0]], patch.to_input[t[1]], patch.to_input[t[2]]});
+  report("floor patch: the vertices of the faces under the floor are free", seeds_free);
+  report("floor patch: its faces are exactly the faces around its free vertices", in_patch == around_free,
+         str(in_patch.size()) + " against " + str(around_free.size()));
+  report("floor patch: some vertices are held, and fewer are free than in the mesh",
+         patch.free_vertices < patch.to_input.size() && patch.free_vertices < soup.number_of_vertices());
+
+  I::Points y(patch.to_input.size());
+  for(std::size_t i = 0; i < y.size(); ++i) y[i] = x[patch.to_input[i]];
+  const I::Points start = y;
+  const I::Spherical_energy<SP::Dirichlet_energy> patch_energy(patch.soup, SP::Dirichlet_energy());
+  const I::Spherical_energy<SP::Dirichlet_energy> whole_energy(soup, SP::Dirichlet_energy());
+  Newton solver(patch.soup, patch.free_vertices);
+  I::Newton_options options;
+  options.keep_fold_free = true;
+  options.fold_floor = floor;
+  auto no_visitor = [](const SP::Progress&) { return true; };
+  const I::Newton_outcome out = solver.minimize(patch_energy, y, options, no_visitor);
+
+  bool held_kept = true;
+  for(std::size_t i = patch.free_vertices; i < y.size(); ++i) held_kept = held_kept && y[i] == start[i];
+  I::Points x_after = x;
+  for(std::size_t i = 0; i < y.size(); ++i) x_after[patch.to_input[i]] = y[i];
+  const double whole_change = whole_energy.value(x_after) - whole_energy.value(x);
+  const double patch_change = patch_energy.value(y) - patch_energy.value(start);
+  double lowest_before = std::numeric_limits<double>::infinity(), lowest_after = lowest_before;
+  for(std::size_t f = 0; f < patch.soup.faces.size(); ++f) {
+    lowest_before = std::min(lowest_before, face_scale(patch.soup, start, f));
+    lowest_after = std::min(lowest_after, face_scale(patch.soup, y, f));
+  }
+  report("floor patch: the solve ran and stopped converged", out.iterations > 0 && out.stop == I::Newton_stop::CONVERGED,
+         str(out.iterations) + " iterations, stop " + str(int(out.stop)));
+  report("floor patch: the held vertices did not move", held_kept);
+  report("floor patch: the whole map's energy changes as the patch's (1e-12)",
+         std::abs(whole_change - patch_change) <= 1e-12 * whole_energy.value(x),
+         str(whole_change, 8) + " against " + str(patch_change, 8));
+  report("floor patch: fold-free, and its lowest face lifted towards the floor",
+         I::count_bad_faces(patch.soup.faces, y) == 0 && lowest_after > lowest_before && lowest_after > 0.5 * floor,
+         "lowest share of the floor " + str(lowest_before / floor) + " -> " + str(lowest_after / floor));
+}
+
 } // namespace
 
 int main()
@@ -270,6 +349,7 @@ int main()
   test_kernel_placement();
   test_mean_value_point();
   test_mobius_boost();
+  test_floor_patch();
   std::cout << passed << " passed, " << failed << " failed" << std::endl;
   return failed == 0 ? 0 : 1;
 }

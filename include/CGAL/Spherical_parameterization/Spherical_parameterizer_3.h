@@ -12,6 +12,7 @@
 #include <CGAL/Spherical_parameterization/Weighted_sum_energy.h>
 #include <CGAL/Spherical_parameterization/named_parameters.h>
 #include <CGAL/Spherical_parameterization/internal/Coarse_to_fine.h>
+#include <CGAL/Spherical_parameterization/internal/Floor_patch.h>
 #include <CGAL/Spherical_parameterization/internal/Newton_solver.h>
 #include <CGAL/Spherical_parameterization/internal/Progressive_mesh.h>
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
@@ -299,11 +300,16 @@ private:
       return uninterrupted;
     }
     // A fold-free minimum of the input with its faces a little under the floor: the floor
-    // stage alone, from there. Not on the coarser levels: there the continuation's cushion
+    // stage alone, from there, on the neighbourhood of those faces first (`lift_locally()`)
+    // and on the whole map only if that was not enough. Not on the coarser levels: there the continuation's cushion
     // is what keeps the next levels clear of the floor (bunny00, floor stage alone on every
     // level: Dirichlet 35 -> 63 iterations, Tutte 38 -> 42).
-    if(is_input && fold_free_minimum && level.solver->is_above_floor(x, near_floor * floor, internal::degenerate_determinant))
-      return minimize(energy_, stage, true, run, level, x, visitor);
+    if(is_input && fold_free_minimum && level.solver->is_above_floor(x, near_floor * floor, internal::degenerate_determinant)) {
+      bool enough = false;
+      if(!lift_locally(run, x, visitor, enough))
+        return false;
+      return enough || minimize(energy_, stage, true, run, level, x, visitor);
+    }
     x = std::move(fold_free);
     // Continuation on the floor: first 1000 times higher, to a loose tolerance, so that the
     // large moves happen while the squeezed faces are still large and well conditioned;
@@ -316,6 +322,44 @@ private:
     run.options.fold_floor = saved.fold_floor;
     run.options.tolerance = saved.tolerance;
     return first && minimize(energy_, stage, true, run, level, x, visitor);
+  }
+
+  // The floor stage on the neighbourhood of the input's faces under the floor, the rest of
+  // the map held (internal::Floor_patch). `enough` if that was all the floor stage had to
+  // do: the map was a minimum of the energy, and energy plus barrier cannot fall below it,
+  // so the floor stage on the whole map could gain at most what the patch's stage `added`.
+  // The patch runs to a 100 times tighter tolerance, relative to the whole map's energy:
+  // its iterations are cheap, and the smaller `added` then passes the test. Measured:
+  // bunny00 after two subdivisions, Combined: 6236 free vertices, 16 iterations in 0.35 s
+  // instead of 2 global ones (14 s); bunny00 Tutte 6.5 -> 4.8 s, after one subdivision
+  // 51 -> 29 s. False if interrupted.
+  template <class Visitor>
+  bool lift_locally(Run& run, internal::Points& x, Visitor& visitor, bool& enough)
+  {
+    enough = false;
+    const double minimum = last_energy_;
+    const bool at_minimum = last_level_stop_ != internal::Newton_stop::ITERATION_CAP;
+    internal::Floor_patch patch = internal::make_floor_patch(
+      input_.soup, input_.solver->faces_under_floor(x, run.options.fold_floor), patch_rings);
+    if(patch.free_vertices > input_.number_of_vertices() / 4)  // not local: the global stage
+      return true;
+    Level level;
+    level.soup = std::move(patch.soup);
+    level.to_input = std::move(patch.to_input);
+    level.solver = std::make_unique<Newton>(level.soup, patch.free_vertices);
+    internal::Points y;
+    level.gather(x, y);
+    const double before = internal::Spherical_energy<Energy>(level.soup, energy_, run.correction).value(y);
+    run.options.held_energy = minimum - before;
+    run.options.tolerance /= 100;
+    const bool uninterrupted = minimize(energy_, "floor patch", true, run, level, y, visitor);
+    run.options.held_energy = 0;
+    run.options.tolerance *= 100;
+    level.scatter(y, x);
+    const double added = last_energy_ - before;
+    enough = uninterrupted && at_minimum && last_level_stop_ == internal::Newton_stop::CONVERGED &&
+             added <= 0.5 * run.options.tolerance * std::abs(minimum);
+    return uninterrupted;
   }
 
   // Garanzha et al.'s continuation: unfold with a finite energy, then tighten the barrier.
@@ -438,6 +482,7 @@ private:
     run.stages += std::string(run.stages.empty() || run.stages.back() == ':' ? "" : " ") + stage + ":" +
                   std::to_string(out.iterations);
     last_level_stop_ = out.stop;
+    last_energy_ = out.energy;
     if(&level == &input_)
       last_stop_ = out.stop;
     if(out.stop == internal::Newton_stop::CANCELLED || out.stop == internal::Newton_stop::TIME_LIMIT) {
@@ -512,6 +557,8 @@ private:
   // of 13 input iterations on bunny00 (Tutte, 2113 faces under, smallest share 0.16) and 8
   // of 12 after two subdivisions (one face of tiny input area, det 8.8e-14).
   static constexpr double near_floor = 0.1;
+  // The rings around the faces under the floor that the floor patch frees (`lift_locally()`).
+  static constexpr int patch_rings = 3;
 
   Level input_;
   std::unique_ptr<internal::Progressive_mesh> hierarchy_;
@@ -520,6 +567,7 @@ private:
   std::string input_detail_;
   internal::Newton_stop last_stop_ = internal::Newton_stop::CONVERGED;        // of the input level
   internal::Newton_stop last_level_stop_ = internal::Newton_stop::CONVERGED;  // of the last stage
+  double last_energy_ = 0;                                                      // at its end
 };
 
 } // namespace Spherical_parameterization

@@ -32,10 +32,14 @@ namespace internal {
 
 using Clock = std::chrono::steady_clock;
 
+
 struct Newton_options
 {
   std::size_t max_iterations = 200;
   double tolerance = 1e-6;  ///< on the relative predicted and actual decrease of the energy
+  /// Energy of the faces outside the soup, held fixed, that counts in the total the
+  /// tolerance is relative to: a patch of a map then stops where the whole map would.
+  double held_energy = 0;
   Clock::time_point start = Clock::now();
   Clock::time_point deadline = Clock::time_point::max();
   /// Keep the map fold-free: cap every step before a chord determinant reaches 0, and add
@@ -97,6 +101,8 @@ struct Newton_outcome
 ///   near-Moebius modes along which the mesh slides;
 /// - an Armijo line search rejects non-finite energies (the d_min barrier).
 /// The sparsity pattern and its symbolic analysis depend on the mesh only and are reused.
+/// The unknowns are the first `free_vertices` vertices of the soup, by default all of them;
+/// the others are held where they are (a patch of a larger map, see `Floor_patch`).
 template <class SparseSolver, class ConcurrencyTag>
 class Newton_solver
 {
@@ -107,8 +113,8 @@ class Newton_solver
   static constexpr int lower_entries = 21;  // of a symmetric 6x6 matrix
 
 public:
-  explicit Newton_solver(const Triangle_soup& soup)
-    : faces_(&soup.faces), n_(soup.number_of_vertices())
+  explicit Newton_solver(const Triangle_soup& soup, std::size_t free_vertices = std::numeric_limits<std::size_t>::max())
+    : faces_(&soup.faces), n_(soup.number_of_vertices()), free_(std::min(free_vertices, n_))
   {
     barrier_data_.reserve(faces_->size());
     for(std::size_t f = 0; f < soup.faces.size(); ++f)
@@ -140,7 +146,7 @@ public:
       if(out.iterations >= options.max_iterations) { out.stop = Newton_stop::ITERATION_CAP; break; }
       if(Clock::now() > options.deadline) { out.stop = Newton_stop::TIME_LIMIT; break; }
 
-      if(options.boost_search &&
+      if(options.boost_search && free_ == n_ &&
          boost_step(x, [&](const Points& y) { return total_energy(energy, y); }, e))
         e = total_energy(energy, x);
       compute_bases(x);
@@ -151,7 +157,8 @@ public:
       else if(!newton_direction(energy, x, options.projected_hessian, d)) { out.stop = Newton_stop::STALLED; break; }
 
       const double decrement = -gradient_.dot(d);
-      if(!(decrement > options.tolerance * std::abs(e))) { out.stop = Newton_stop::CONVERGED; break; }
+      double threshold = options.tolerance * std::abs(e + options.held_energy);
+      if(!(decrement > threshold)) { out.stop = Newton_stop::CONVERGED; break; }
 
       double alpha = 1;
       if(options.keep_fold_free)
@@ -177,6 +184,7 @@ public:
       }
       const double decrease = e - e_new;
       e = e_new;
+      threshold = options.tolerance * std::abs(e + options.held_energy);
       ++out.iterations;
       out.energy = e;
       // A full step says the model holds: relax the shift quickly (/16 rather than /4 made
@@ -202,14 +210,14 @@ public:
       const double predicted = predicted_decrement(last_full_decrement, decrement);
       last_full_decrement = model_held ? decrement : 0;
       const bool quadratic_tail =
-        model_held && (decrement <= 10 * options.tolerance * std::abs(e) ||
-                       (options.predict_convergence && predicted <= 1e-2 * options.tolerance * std::abs(e)));
-      if(quadratic_tail || decrease <= options.tolerance * std::abs(e) * 1e-2 || stalled(history, options.tolerance)) {
+        model_held && (decrement <= 10 * threshold ||
+                       (options.predict_convergence && predicted <= 1e-2 * threshold));
+      if(quadratic_tail || decrease <= threshold * 1e-2 || stalled(history, threshold)) {
         out.stop = Newton_stop::CONVERGED;
         break;
       }
       if(options.leave_under_floor && options.fold_free_iterate && folded == 0 && model_held &&
-         predicted <= options.tolerance * std::abs(e) && !is_above_floor(x, options.fold_floor)) {
+         predicted <= threshold && !is_above_floor(x, options.fold_floor)) {
         out.stop = Newton_stop::UNDER_FLOOR;
         break;
       }
@@ -235,6 +243,25 @@ public:
     return std::find(face_value_.begin(), face_value_.end(), 0.0) == face_value_.end();
   }
 
+  /// The faces the fold barrier of `floor` holds (`Fold_barrier::face_activation()`), or
+  /// that are flipped or degenerate.
+  std::vector<int> faces_under_floor(const Points& x, double floor)
+  {
+    face_value_.resize(faces_->size());
+    parallel_for<ConcurrencyTag>(faces_->size(), [&](std::size_t f) {
+      const auto& t = (*faces_)[f];
+      const Chord_triangle<double> chord(x[t[0]], x[t[1]], x[t[2]]);
+      const double det = chord.determinant();
+      face_value_[f] = !(det > 0) || Fold_barrier::scale(chord, det, barrier_data_[f]) <
+                                       Fold_barrier::face_activation(barrier_data_[f], floor);
+    });
+    std::vector<int> under;
+    for(std::size_t f = 0; f < face_value_.size(); ++f)
+      if(face_value_[f] != 0)
+        under.push_back(int(f));
+    return under;
+  }
+
 private:
   // Newton's decrement converges quadratically near a minimum, d_next = C d^2, with C
   // estimated from the last two: d^3 / previous^2. Without a previous full step, or if the
@@ -246,16 +273,15 @@ private:
     return decrement * (decrement / previous) * (decrement / previous);
   }
 
-  // The energy decreased by less than `tolerance` (relative) over the last iterations: a slow
+  // The energy decreased by less than `threshold` over the last iterations: a slow
   // linear tail, such as faces pressed against the fold barrier in a squeezed protrusion,
   // where the map no longer changes visibly.
-  static bool stalled(const std::vector<double>& history, double tolerance)
+  static bool stalled(const std::vector<double>& history, double threshold)
   {
     constexpr std::size_t window = 10;
     if(history.size() <= window)
       return false;
-    const double e = history.back();
-    return history[history.size() - 1 - window] - e <= tolerance * std::abs(e);
+    return history[history.size() - 1 - window] - history.back() <= threshold;
   }
 
   template <class Number>
@@ -267,22 +293,27 @@ private:
 
   void build_pattern()
   {
-    // Lower triangle of the 2n x 2n matrix: 2x2 blocks on the diagonal and at every edge.
+    // Lower triangle of the matrix of the free vertices: 2x2 blocks on the diagonal and at
+    // every edge between two of them.
+    const int size = int(2 * free_);
     std::vector<Eigen::Triplet<double>> triplets;
     triplets.reserve(faces_->size() * lower_entries);
     for(const auto& t : *faces_)
-      for_each_lower_entry(t, [&](int, int row, int col) { triplets.emplace_back(row, col, 0.0); });
-    matrix_.resize(2 * n_, 2 * n_);
+      for_each_lower_entry(t, [&](int, int row, int col) {
+        if(row < size)
+          triplets.emplace_back(row, col, 0.0);
+      });
+    matrix_.resize(size, size);
     matrix_.setFromTriplets(triplets.begin(), triplets.end());
     matrix_.makeCompressed();
 
     entry_index_.resize(faces_->size() * lower_entries);
     for(std::size_t f = 0; f < faces_->size(); ++f)
       for_each_lower_entry((*faces_)[f], [&](int local, int row, int col) {
-        entry_index_[f * lower_entries + local] = index_of(row, col);
+        entry_index_[f * lower_entries + local] = row < size ? index_of(row, col) : -1;
       });
-    diagonal_index_.resize(2 * n_);
-    for(std::size_t i = 0; i < 2 * n_; ++i)
+    diagonal_index_.resize(size);
+    for(int i = 0; i < size; ++i)
       diagonal_index_[i] = index_of(int(i), int(i));
   }
 
@@ -361,10 +392,11 @@ private:
       const double* h = &face_hessian_[f * lower_entries];
       const int* index = &entry_index_[f * lower_entries];
       for(int k = 0; k < lower_entries; ++k)
-        matrix_.valuePtr()[index[k]] += h[k];
+        if(index[k] >= 0)
+          matrix_.valuePtr()[index[k]] += h[k];
     }
-    gradient_.resize(2 * n_);
-    for(std::size_t v = 0; v < n_; ++v) {
+    gradient_.resize(2 * free_);
+    for(std::size_t v = 0; v < free_; ++v) {
       gradient_.template segment<2>(2 * v) = bases_[v].transpose() * ambient_gradient_[v];
       // Second-order term of the retraction x = (p + B u) / |p + B u|: -<g_v, x_v> I_2.
       const double curvature = -ambient_gradient_[v].dot(x[v]);
@@ -382,8 +414,8 @@ private:
   void smoothing_direction(const Spherical_energy<Energy>& energy, const Points& x, Vector& d)
   {
     assemble(energy, x, false);
-    d.resize(2 * n_);
-    for(std::size_t v = 0; v < n_; ++v) {
+    d.resize(2 * free_);
+    for(std::size_t v = 0; v < free_; ++v) {
       const int k = diagonal_index_[2 * v];  // (2v, 2v), then (2v + 1, 2v) below it in the column
       Eigen::Matrix2d block;
       block << matrix_.valuePtr()[k], matrix_.valuePtr()[k + 1], matrix_.valuePtr()[k + 1],
@@ -419,20 +451,20 @@ private:
   {
     assemble(energy, x, projected);
     double mean_diagonal = 0;
-    for(std::size_t i = 0; i < 2 * n_; ++i)
+    for(std::size_t i = 0; i < 2 * free_; ++i)
       mean_diagonal += std::abs(matrix_.valuePtr()[diagonal_index_[i]]);
-    mean_diagonal /= double(2 * n_);
+    mean_diagonal /= double(2 * free_);
     if(!std::isfinite(mean_diagonal) || mean_diagonal == 0)
       return false;
     mu_floor_ = 1e-9 * mean_diagonal;
     // The first exact attempt of a solve starts at 1e-4 x the mean diagonal: starts are far
     // from a minimum, and growing from the floor cost 7 failed factorizations on bear.
     mu = std::max(mu == 0 && !projected ? 1e-4 * mean_diagonal : mu, mu_floor_);
-    std::vector<double> diagonal(2 * n_);  // only the diagonal changes with the shift
-    for(std::size_t i = 0; i < 2 * n_; ++i)
+    std::vector<double> diagonal(2 * free_);  // only the diagonal changes with the shift
+    for(std::size_t i = 0; i < 2 * free_; ++i)
       diagonal[i] = matrix_.valuePtr()[diagonal_index_[i]];
     for(int attempt = 0; attempt < 60 && mu <= max_relative_shift * mean_diagonal; ++attempt, mu *= 8) {
-      for(std::size_t i = 0; i < 2 * n_; ++i)
+      for(std::size_t i = 0; i < 2 * free_; ++i)
         matrix_.valuePtr()[diagonal_index_[i]] = diagonal[i] + mu;
       if(solver_.factorize(matrix_)) {
         d = solver_.solve(-gradient_);
@@ -445,8 +477,8 @@ private:
 
   std::vector<Eigen::Vector3d> ambient_step(const Vector& d) const
   {
-    std::vector<Eigen::Vector3d> v(n_);
-    for(std::size_t i = 0; i < n_; ++i)
+    std::vector<Eigen::Vector3d> v(n_, Eigen::Vector3d::Zero());
+    for(std::size_t i = 0; i < free_; ++i)
       v[i] = bases_[i] * d.template segment<2>(2 * i);
     return v;
   }
@@ -479,7 +511,7 @@ private:
   {
     for(int k = 0; k < 50 && alpha > 0; ++k, alpha *= 0.5) {
       for(std::size_t v = 0; v < n_; ++v)
-        trial[v] = retract(x[v], bases_[v], alpha * d.template segment<2>(2 * v));
+        trial[v] = v < free_ ? retract(x[v], bases_[v], alpha * d.template segment<2>(2 * v)) : x[v];
       const double e = total_energy(energy, trial);
       if(std::isfinite(e) && e <= e0 - 1e-4 * alpha * decrement)
         return e;
@@ -489,6 +521,7 @@ private:
 
   const Faces* faces_;
   std::size_t n_;
+  std::size_t free_;  // the unknowns: vertices 0 to free_ - 1
   bool with_barrier_ = false;
   std::vector<Fold_barrier::Face_data> barrier_data_;
   double floor_ = 0;  // the barrier's activation
