@@ -301,9 +301,9 @@ private:
     }
     // A fold-free minimum of the input with its faces a little under the floor: the floor
     // stage alone, from there, on the neighbourhood of those faces first (`lift_locally()`)
-    // and on the whole map only if that was not enough. Not on the coarser levels: there the continuation's cushion
-    // is what keeps the next levels clear of the floor (bunny00, floor stage alone on every
-    // level: Dirichlet 35 -> 63 iterations, Tutte 38 -> 42).
+    // and on the whole map only if that was not enough. Not on the coarser levels: there the
+    // continuation's cushion is what keeps the next levels clear of the floor (bunny00, floor
+    // stage alone on every level: Dirichlet 35 -> 63 iterations, Tutte 38 -> 42).
     if(is_input && fold_free_minimum && level.solver->is_above_floor(x, near_floor * floor, internal::degenerate_determinant)) {
       bool enough = false;
       if(!lift_locally(run, x, visitor, enough))
@@ -350,11 +350,12 @@ private:
     internal::Points y;
     level.gather(x, y);
     const double before = internal::Spherical_energy<Energy>(level.soup, energy_, run.correction).value(y);
+    const double tolerance = run.options.tolerance;
     run.options.held_energy = minimum - before;
-    run.options.tolerance /= 100;
+    run.options.tolerance = tolerance / 100;
     const bool uninterrupted = minimize(energy_, "floor patch", true, run, level, y, visitor);
     run.options.held_energy = 0;
-    run.options.tolerance *= 100;
+    run.options.tolerance = tolerance;
     level.scatter(y, x);
     const double added = last_energy_ - before;
     enough = uninterrupted && at_minimum && last_level_stop_ == internal::Newton_stop::CONVERGED &&

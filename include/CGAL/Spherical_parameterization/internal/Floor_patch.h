@@ -43,6 +43,8 @@ struct Vertex_faces
   }
 };
 
+/// The patch of the vertices within `rings` rings of the faces `seed_faces` of `soup` (ring 0:
+/// their own vertices).
 inline Floor_patch make_floor_patch(const Triangle_soup& soup, const std::vector<int>& seed_faces, int rings)
 {
   const Vertex_faces around(soup);

@@ -32,7 +32,6 @@ namespace internal {
 
 using Clock = std::chrono::steady_clock;
 
-
 struct Newton_options
 {
   std::size_t max_iterations = 200;
