@@ -13,7 +13,7 @@ namespace Spherical_parameterization {
 /// What a visitor learns after each solver iteration.
 struct Progress
 {
-  const char* stage = "";       ///< "tutte", "untangle", "target", ...
+  const char* stage = "";       ///< "tutte", "untangle", "refine", "target", "floor patch"
   std::size_t iteration = 0;    ///< iterations done in all stages so far
   double energy = 0;            ///< energy of the stage after this iteration
   double newton_decrement = 0;  ///< predicted decrease, `-g . d`
