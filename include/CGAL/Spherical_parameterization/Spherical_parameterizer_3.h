@@ -305,10 +305,9 @@ private:
     // continuation's cushion is what keeps the next levels clear of the floor (bunny00, floor
     // stage alone on every level: Dirichlet 35 -> 63 iterations, Tutte 38 -> 42).
     if(is_input && fold_free_minimum && level.solver->is_above_floor(x, near_floor * floor, internal::degenerate_determinant)) {
-      bool enough = false;
-      if(!lift_locally(run, x, visitor, enough))
-        return false;
-      return enough || minimize(energy_, stage, true, run, level, x, visitor);
+      if(lift_locally(run, x, visitor) || run.interrupted)
+        return !run.interrupted;
+      return minimize(energy_, stage, true, run, level, x, visitor);
     }
     x = std::move(fold_free);
     // Continuation on the floor: first 1000 times higher, to a loose tolerance, so that the
@@ -325,24 +324,22 @@ private:
   }
 
   // The floor stage on the neighbourhood of the input's faces under the floor, the rest of
-  // the map held (internal::Floor_patch). `enough` if that was all the floor stage had to
-  // do: the map was a minimum of the energy, and energy plus barrier cannot fall below it,
+  // the map held (internal::Floor_patch). True if that was all the floor stage had to do: the map was a minimum of the energy, and energy plus barrier cannot fall below it,
   // so the floor stage on the whole map could gain at most what the patch's stage `added`.
   // The patch runs to a 100 times tighter tolerance, relative to the whole map's energy:
   // its iterations are cheap, and the smaller `added` then passes the test. Measured:
   // bunny00 after two subdivisions, Combined: 6236 free vertices, 16 iterations in 0.35 s
   // instead of 2 global ones (14 s); bunny00 Tutte 6.5 -> 4.8 s, after one subdivision
-  // 51 -> 29 s. False if interrupted.
+  // 51 -> 29 s. False if interrupted (`run.interrupted`).
   template <class Visitor>
-  bool lift_locally(Run& run, internal::Points& x, Visitor& visitor, bool& enough)
+  bool lift_locally(Run& run, internal::Points& x, Visitor& visitor)
   {
-    enough = false;
     const double minimum = last_energy_;
     const bool at_minimum = last_level_stop_ != internal::Newton_stop::ITERATION_CAP;
     internal::Floor_patch patch = internal::make_floor_patch(
       input_.soup, input_.solver->faces_under_floor(x, run.options.fold_floor), patch_rings);
     if(patch.free_vertices > input_.number_of_vertices() / 4)  // not local: the global stage
-      return true;
+      return false;
     Level level;
     level.soup = std::move(patch.soup);
     level.to_input = std::move(patch.to_input);
@@ -358,9 +355,8 @@ private:
     run.options.tolerance = tolerance;
     level.scatter(y, x);
     const double added = last_energy_ - before;
-    enough = uninterrupted && at_minimum && last_level_stop_ == internal::Newton_stop::CONVERGED &&
-             added <= 0.5 * run.options.tolerance * std::abs(minimum);
-    return uninterrupted;
+    return uninterrupted && at_minimum && last_level_stop_ == internal::Newton_stop::CONVERGED &&
+           added <= 0.5 * run.options.tolerance * std::abs(minimum);
   }
 
   // Garanzha et al.'s continuation: unfold with a finite energy, then tighten the barrier.

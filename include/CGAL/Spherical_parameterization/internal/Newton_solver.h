@@ -234,10 +234,9 @@ public:
   {
     face_value_.resize(faces_->size());
     parallel_for<ConcurrencyTag>(faces_->size(), [&](std::size_t f) {
-      const auto& t = (*faces_)[f];
-      const Chord_triangle<double> chord(x[t[0]], x[t[1]], x[t[2]]);
-      const double det = chord.determinant();
-      face_value_[f] = det > min_determinant && Fold_barrier::scale(chord, det, barrier_data_[f]) >= floor;
+      double det;
+      const double t = face_scale(f, x, det);
+      face_value_[f] = det > min_determinant && t >= floor;
     });
     return std::find(face_value_.begin(), face_value_.end(), 0.0) == face_value_.end();
   }
@@ -248,11 +247,9 @@ public:
   {
     face_value_.resize(faces_->size());
     parallel_for<ConcurrencyTag>(faces_->size(), [&](std::size_t f) {
-      const auto& t = (*faces_)[f];
-      const Chord_triangle<double> chord(x[t[0]], x[t[1]], x[t[2]]);
-      const double det = chord.determinant();
-      face_value_[f] = !(det > 0) || Fold_barrier::scale(chord, det, barrier_data_[f]) <
-                                       Fold_barrier::face_activation(barrier_data_[f], floor);
+      double det;
+      const double t = face_scale(f, x, det);
+      face_value_[f] = !(det > 0) || t < Fold_barrier::face_activation(barrier_data_[f], floor);
     });
     std::vector<int> under;
     for(std::size_t f = 0; f < face_value_.size(); ++f)
@@ -262,6 +259,15 @@ public:
   }
 
 private:
+  // The scale t of face `f` (`Fold_barrier::scale`), with its chord determinant in `det`.
+  double face_scale(std::size_t f, const Points& x, double& det) const
+  {
+    const auto& t = (*faces_)[f];
+    const Chord_triangle<double> chord(x[t[0]], x[t[1]], x[t[2]]);
+    det = chord.determinant();
+    return Fold_barrier::scale(chord, det, barrier_data_[f]);
+  }
+
   // Newton's decrement converges quadratically near a minimum, d_next = C d^2, with C
   // estimated from the last two: d^3 / previous^2. Without a previous full step, or if the
   // decrement did not shrink by 4, no prediction: the decrement itself is returned.
