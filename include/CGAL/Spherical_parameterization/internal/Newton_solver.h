@@ -91,7 +91,8 @@ struct Newton_outcome
 /// - the exact Hessian in the tangent charts: each face's 9x9 ambient Hessian pulled to its
 ///   6 tangent variables, plus the sphere-curvature term `-<g_v, x_v> I_2` of each vertex;
 /// - a diagonal shift `mu` (Levenberg-Marquardt): grown x8 until the factorization is
-///   positive definite, shrunk /4 after every iteration, never below 1e-9 x the mean
+///   positive definite, shrunk after every iteration (/16 after a full step, /4 after a
+///   shorter one, /2 after one whose shift had to grow), never below 1e-9 x the mean
 ///   diagonal, which also absorbs the three rotation modes, so no vertex is fixed.
 ///   Where the shift would exceed 1e-3 x the mean diagonal, the iteration uses the per-face
 ///   Hessians made positive definite instead (`project_to_psd`), and the exact one is
@@ -188,7 +189,11 @@ public:
       out.energy = e;
       // A full step says the model holds: relax the shift quickly (/16 rather than /4 made
       // the tail quadratic on bunny00 after one subdivision: 3 Newton steps instead of 6).
-      const double relax = alpha == 1 ? 16 : 4;
+      // Unless the shift had to be raised in this iteration: it is then at most 8 times one
+      // that failed, and each failure costs a whole factorization (the negative modes are
+      // global, found in the last supernode); /2 then cut bunny00 Dirichlet's failures from
+      // 23 to 17 (doc/NOTES.md, round seven).
+      const double relax = shift_raised_ && !smoothing ? 2 : alpha == 1 ? 16 : 4;
       mu_exact_ = std::max(mu_exact_ / relax, mu_floor_);
       mu_projected_ = std::max(mu_projected_ / relax, mu_floor_);
 
@@ -468,7 +473,8 @@ private:
     std::vector<double> diagonal(2 * free_);  // only the diagonal changes with the shift
     for(std::size_t i = 0; i < 2 * free_; ++i)
       diagonal[i] = matrix_.valuePtr()[diagonal_index_[i]];
-    for(int attempt = 0; attempt < 60 && mu <= max_relative_shift * mean_diagonal; ++attempt, mu *= 8) {
+    shift_raised_ = false;
+    for(int attempt = 0; attempt < 60 && mu <= max_relative_shift * mean_diagonal; ++attempt, mu *= 8, shift_raised_ = true) {
       for(std::size_t i = 0; i < 2 * free_; ++i)
         matrix_.valuePtr()[diagonal_index_[i]] = diagonal[i] + mu;
       if(solver_.factorize(matrix_)) {
@@ -535,6 +541,7 @@ private:
   std::vector<int> diagonal_index_;
   SparseSolver solver_;
   int exact_pause_ = 0;  // iterations to go before the exact Hessian is tried again
+  bool shift_raised_ = false;  // the last factorization needed a larger shift than its first try
   double mu_exact_ = 0, mu_projected_ = 0, mu_floor_ = 0;
 
   std::vector<Basis> bases_;
