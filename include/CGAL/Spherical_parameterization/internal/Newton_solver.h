@@ -96,9 +96,9 @@ struct Newton_outcome
 ///   diagonal, which also absorbs the three rotation modes, so no vertex is fixed.
 ///   Where the shift would exceed 1e-3 x the mean diagonal, the iteration uses the per-face
 ///   Hessians made positive definite instead (`project_to_psd`), and the exact one is
-///   skipped for the next 4 iterations. Projection alone was measured 18x slower for Tutte on
-///   triceratops (200 against 11 iterations): it hides the negative curvature of the
-///   near-Moebius modes along which the mesh slides;
+///   skipped for the next 4 iterations, its shift held near that largest value. Projection
+///   alone was measured 18x slower for Tutte on triceratops (200 against 11 iterations): it
+///   hides the negative curvature of the near-Moebius modes along which the mesh slides;
 /// - an Armijo line search rejects non-finite energies (the d_min barrier).
 /// The sparsity pattern and its symbolic analysis depend on the mesh only and are reused.
 /// The unknowns are the first `free_vertices` vertices of the soup, by default all of them;
@@ -187,15 +187,7 @@ public:
       threshold = options.tolerance * std::abs(e + options.held_energy);
       ++out.iterations;
       out.energy = e;
-      // A full step says the model holds: relax the shift quickly (/16 rather than /4 made
-      // the tail quadratic on bunny00 after one subdivision: 3 Newton steps instead of 6).
-      // Unless the shift had to be raised in this iteration: it is then at most 8 times one
-      // that failed, and each failure costs a whole factorization (the negative modes are
-      // global, found in the last supernode); /2 then cut bunny00 Dirichlet's failures from
-      // 23 to 17 (doc/NOTES.md, round seven).
-      const double relax = shift_raised_ && !smoothing ? 2 : alpha == 1 ? 16 : 4;
-      mu_exact_ = std::max(mu_exact_ / relax, mu_floor_);
-      mu_projected_ = std::max(mu_projected_ / relax, mu_floor_);
+      relax_shifts(alpha == 1, smoothing);
 
       Progress p;
       p.stage = options.stage;
@@ -271,6 +263,25 @@ private:
     const Chord_triangle<double> chord(x[t[0]], x[t[1]], x[t[2]]);
     det = chord.determinant();
     return Fold_barrier::scale(chord, det, barrier_data_[f]);
+  }
+
+  // After an iteration, the shifts are relaxed towards their floor:
+  // - /16 after a full step, which says the model holds (rather than /4: the tail became
+  //   quadratic on bunny00 after one subdivision, 3 Newton steps instead of 6), else /4;
+  // - /2 if the shift had to grow in this iteration: it is then at most 8 times one that
+  //   failed, and a failure costs a whole factorization (the negative modes are global,
+  //   found in the last supernode);
+  // - the exact shift not at all while the exact Hessian is paused: it stays where it
+  //   failed (relaxed once as the pause ends), instead of coming back from 1e-8 and climbing
+  //   through failed factorizations to where it was.
+  // The last two cut the failed factorizations of bunny00 Tutte from 24 to 14 (doc/NOTES.md,
+  // round seven).
+  void relax_shifts(bool full_step, bool smoothing)
+  {
+    const double relax = shift_raised_ && !smoothing ? 2 : full_step ? 16 : 4;
+    if(exact_pause_ == 0)
+      mu_exact_ = std::max(mu_exact_ / relax, mu_floor_);
+    mu_projected_ = std::max(mu_projected_ / relax, mu_floor_);
   }
 
   // Newton's decrement converges quadratically near a minimum, d_next = C d^2, with C
