@@ -484,11 +484,11 @@ private:
     std::vector<double> diagonal(2 * free_);  // only the diagonal changes with the shift
     for(std::size_t i = 0; i < 2 * free_; ++i)
       diagonal[i] = matrix_.valuePtr()[diagonal_index_[i]];
-    shift_raised_ = false;
-    for(int attempt = 0; attempt < 60 && mu <= max_relative_shift * mean_diagonal; ++attempt, mu *= 8, shift_raised_ = true) {
+    for(int attempt = 0; attempt < 60 && mu <= max_relative_shift * mean_diagonal; ++attempt, mu *= 8) {
       for(std::size_t i = 0; i < 2 * free_; ++i)
         matrix_.valuePtr()[diagonal_index_[i]] = diagonal[i] + mu;
       if(solver_.factorize(matrix_)) {
+        shift_raised_ = attempt > 0;
         d = solver_.solve(-gradient_);
         return d.allFinite();
       }
