@@ -324,8 +324,9 @@ private:
   }
 
   // The floor stage on the neighbourhood of the input's faces under the floor, the rest of
-  // the map held (internal::Floor_patch). True if that was all the floor stage had to do: the map was a minimum of the energy, and energy plus barrier cannot fall below it,
-  // so the floor stage on the whole map could gain at most what the patch's stage `added`.
+  // the map held (internal::Floor_patch). True if that was all the floor stage had to do:
+  // the map was a minimum of the energy, and energy plus barrier cannot fall below it, so
+  // the floor stage on the whole map could gain at most what the patch's stage `added`.
   // The patch runs to a 100 times tighter tolerance, relative to the whole map's energy:
   // its iterations are cheap, and the smaller `added` then passes the test. Measured:
   // bunny00 after two subdivisions, Combined: 6236 free vertices, 16 iterations in 0.35 s
