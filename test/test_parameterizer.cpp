@@ -662,17 +662,14 @@ void test_sample(const std::string& file, const std::string& energy_name, const 
   solve_and_check(name, mesh, SP::parameters::energy(energy));
 }
 
-/// The CHOLMOD factorization ordered on the vertex graph (used from 50000 vertices on, so
-/// tested here directly on a small mesh): it must analyse with the given ordering and solve
-/// a 2x2-block system of a mesh's pattern as exactly as Eigen's LDLT does.
-void test_vertex_ordered_cholmod()
-{
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
-  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-  const SP::Icosphere sphere = SP::make_icosphere(4);
+using Sparse_matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+/// The lower triangle of a positive definite matrix with the pattern of a Newton matrix on
+/// `sphere`: random 2x2 blocks at every edge, made diagonally dominant.
+Sparse_matrix block_matrix(const SP::Icosphere& sphere)
+{
   const int n = int(sphere.points.size());
-  // Lower triangle of a block Laplacian-like matrix with random symmetric 2x2 blocks,
-  // made positive definite by its diagonal.
   std::vector<Eigen::Triplet<double>> entries;
   std::vector<double> row_sum(2 * n, 0.0);
   for(const auto& t : sphere.faces)
@@ -691,14 +688,37 @@ void test_vertex_ordered_cholmod()
     }
   for(int k = 0; k < 2 * n; ++k)
     entries.emplace_back(k, k, row_sum[k] + 1);
-  Matrix m(2 * n, 2 * n);
+  Sparse_matrix m(2 * n, 2 * n);
   m.setFromTriplets(entries.begin(), entries.end());
-  Eigen::VectorXd b = Eigen::VectorXd::Random(2 * n);
+  return m;
+}
 
-  SP::internal::Vertex_ordered_cholmod<Matrix> cholmod;
+/// `m` made indefinite with its diagonal kept positive: one entry off the diagonal made
+/// larger than the geometric mean of its two diagonal entries (an indefinite 2x2 minor).
+Sparse_matrix indefinite_copy(const Sparse_matrix& m)
+{
+  Sparse_matrix bad = m;
+  const int column = 0;
+  Sparse_matrix::InnerIterator it(bad, column);
+  ++it;  // the first entry below the diagonal
+  it.valueRef() = 2 * std::sqrt(bad.coeff(column, column) * bad.coeff(it.row(), it.row()));
+  return bad;
+}
+#endif
+
+/// The CHOLMOD factorization ordered on the vertex graph (used from 50000 vertices on, so
+/// tested here directly on a small mesh): it must analyse with the given ordering and solve
+/// a 2x2-block system of a mesh's pattern as exactly as Eigen's LDLT does.
+void test_vertex_ordered_cholmod()
+{
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
+  const Sparse_matrix m = block_matrix(SP::make_icosphere(4));
+  Eigen::VectorXd b = Eigen::VectorXd::Random(m.rows());
+
+  SP::internal::Vertex_ordered_cholmod<Sparse_matrix> cholmod;
   cholmod.cholmod().print = 0;
   const bool analysed = cholmod.analyze_pattern_by_vertices(m);
-  Eigen::SimplicialLDLT<Matrix, Eigen::Lower> reference(m);
+  Eigen::SimplicialLDLT<Sparse_matrix, Eigen::Lower> reference(m);
   const Eigen::VectorXd expected = reference.solve(b);
   double error = std::numeric_limits<double>::infinity();
   if(analysed) {
@@ -706,14 +726,44 @@ void test_vertex_ordered_cholmod()
     if(cholmod.info() == Eigen::Success)
       error = (cholmod.solve(b) - expected).norm() / expected.norm();
   }
-  report("[vertex-ordered CHOLMOD, icosphere level 4, " + std::to_string(2 * n) + " unknowns] analysed: " +
+  report("[vertex-ordered CHOLMOD, icosphere level 4, " + std::to_string(m.rows()) + " unknowns] analysed: " +
            (analysed ? "yes" : "no") + ", relative difference to Eigen's LDLT " + str(error),
          analysed && error < 1e-10);
-  Matrix three(3, 3);  // an odd size has no 2x2 blocks: refused, nothing analysed
+  Sparse_matrix three(3, 3);  // an odd size has no 2x2 blocks: refused, nothing analysed
   three.setIdentity();
   report("[vertex-ordered CHOLMOD] a matrix of odd size is refused", !cholmod.analyze_pattern_by_vertices(three));
 #else
   skip("[vertex-ordered CHOLMOD]", "built without CHOLMOD");
+#endif
+}
+
+/// `Cholmod_traits` on both of CHOLMOD's factorizations, simplicial for a small mesh and
+/// supernodal for a large one: each solves a positive definite system exactly, and each
+/// reports an indefinite matrix (with a positive diagonal) as a failure, which the Newton
+/// solver's shift relies on. A simplicial LDL' factorization fails the second test.
+void test_cholmod_traits()
+{
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
+  for(int level : {3, 6}) {
+    const Sparse_matrix m = block_matrix(SP::make_icosphere(level));
+    const Eigen::VectorXd b = Eigen::VectorXd::Random(m.rows());
+    SP::Cholmod_traits solver;
+    solver.analyze_pattern(m);
+    const bool supernodal = solver.is_supernodal();
+    const bool indefinite_refused = !solver.factorize(indefinite_copy(m));
+    const bool factored = solver.factorize(m);
+    const double residual = factored ? (m.selfadjointView<Eigen::Lower>() * solver.solve(b) - b).norm() / b.norm()
+                                     : std::numeric_limits<double>::infinity();
+    const std::string name = "[Cholmod_traits, icosphere level " + std::to_string(level) + ", " +
+                             std::to_string(m.rows()) + " unknowns, " + (supernodal ? "supernodal" : "simplicial") + "]";
+    report(name + " " + (level == 3 ? "simplicial" : "supernodal") + " as expected",
+           supernodal == (level == 6));
+    report(name + " indefinite matrix refused: " + (indefinite_refused ? "yes" : "no") + ", relative residual " +
+             str(residual),
+           indefinite_refused && residual < 1e-10);
+  }
+#else
+  skip("[Cholmod_traits]", "built without CHOLMOD");
 #endif
 }
 
@@ -756,6 +806,7 @@ int main(int argc, char** argv)
 
   // Last: its random matrix draws from `rng`, which would otherwise shift the other tests' draws.
   test_vertex_ordered_cholmod();
+  test_cholmod_traits();
 
   std::cerr << "time total: " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
             << " s" << std::endl;

@@ -44,8 +44,15 @@ private:
 
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
 /// \ingroup PkgSphericalParameterizationRef
-/// The same with CHOLMOD's supernodal Cholesky factorization (SuiteSparse), about twice as
-/// fast on large meshes. Available when `CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD` is defined.
+/// The same with CHOLMOD's Cholesky factorization (SuiteSparse), about twice as fast on
+/// large meshes. Available when `CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD` is defined.
+/// CHOLMOD chooses per matrix between its supernodal factorization (dense BLAS blocks) and
+/// its simplicial one, by the flops per entry of the factor: supernodal from 160 on, where
+/// CHOLMOD's default switch is 40. Measured per factorization, one BLAS thread (2n x 2n
+/// Newton matrices of the coarse-to-fine levels; flops per entry in brackets): simplicial
+/// 5 times faster at 1000 rows (18 to 31), 3 times at 3000, 2 times at 9000 to 52000 on
+/// armadillo and diplodocus (53 to 125), 1.5 times at 27000 on bunny00 (132); supernodal
+/// 14% faster at 75000 rows on bunny00 (213), 36% at 300000 rows.
 /// From 50000 vertices on, the fill-reducing ordering is METIS's on the mesh's vertex graph,
 /// expanded to the two unknowns of each vertex (a matrix of even size is taken to be made of
 /// such 2x2 blocks; any other matrix is still factored correctly, perhaps with more fill):
@@ -63,7 +70,17 @@ public:
   using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
   using Vector = Eigen::VectorXd;
 
-  Cholmod_traits() { solver_.cholmod().print = 0; }  // an indefinite matrix is expected, not an error to print
+  Cholmod_traits()
+  {
+    cholmod_common& c = solver_.cholmod();
+    c.print = 0;  // an indefinite matrix is expected, not an error to print
+    c.supernodal = CHOLMOD_AUTO;
+    c.supernodal_switch = supernodal_from;
+    // LL' for the simplicial factorization too: as LDL' (CHOLMOD's default) it factors an
+    // indefinite matrix without failing (test_parameterizer), and the failure is how the
+    // Newton solver learns that its shift is too small.
+    c.final_ll = 1;
+  }
 
   void analyze_pattern(const Matrix& m)
   {
@@ -81,10 +98,14 @@ public:
     const internal::Blas_thread_slack slack;
     return solver_.solve(b);
   }
+
+  /// True if the last analysis chose the supernodal factorization.
+  bool is_supernodal() const { return solver_.is_supernodal(); }
   /// \endcond
 
 private:
   static constexpr Eigen::Index vertex_ordering_from = 50000;  // vertices
+  static constexpr double supernodal_from = 160;               // flops per entry of the factor
   internal::Vertex_ordered_cholmod<Matrix> solver_;
 };
 

@@ -13,7 +13,7 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-/// CHOLMOD's supernodal Cholesky factorization whose fill-reducing ordering can be computed
+/// CHOLMOD's Cholesky factorization whose fill-reducing ordering can be computed
 /// on the vertex graph of a Newton matrix made of 2x2 blocks (unknowns `2v` and `2v + 1` of
 /// vertex `v`), by METIS nested dissection, and expanded to the blocks.
 ///
@@ -26,6 +26,8 @@ namespace internal {
 ///   to 1.07 s, which the 3 to 5 factorizations of a level repay;
 /// - at 75k faces it is a wash (+0.13 s of analysis, -0.04 s per factorization), hence
 ///   `Cholmod_traits` asks for it from 50000 vertices on.
+/// Eigen's supernodal class gives the interface; `Cholmod_traits` lets CHOLMOD choose the
+/// simplicial factorization for the matrices with few flops per entry of the factor.
 template <class Matrix>
 class Vertex_ordered_cholmod : public Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower>
 {
@@ -53,6 +55,8 @@ public:
     this->m_factorizationIsOk = false;
     return true;
   }
+
+  bool is_supernodal() const { return this->m_cholmodFactor && this->m_cholmodFactor->is_super; }
 
 private:
   struct Methods
