@@ -315,27 +315,66 @@ private:
   void build_pattern()
   {
     // Lower triangle of the matrix of the free vertices: 2x2 blocks on the diagonal and at
-    // every edge between two of them.
+    // every edge between two of them, written column by column from the vertex adjacency.
+    // Per-face triplets took 0.9 s at 300k faces, of a set-up of 2.2 s.
+    const std::vector<std::vector<int>> later = later_neighbours();
     const int size = int(2 * free_);
-    std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(faces_->size() * lower_entries);
-    for(const auto& t : *faces_)
-      for_each_lower_entry(t, [&](int, int row, int col) {
-        if(row < size)
-          triplets.emplace_back(row, col, 0.0);
-      });
+    std::size_t entries = 0;
+    for(const std::vector<int>& n : later)
+      entries += 4 * n.size() + 3;
     matrix_.resize(size, size);
-    matrix_.setFromTriplets(triplets.begin(), triplets.end());
-    matrix_.makeCompressed();
+    matrix_.resizeNonZeros(Eigen::Index(entries));
+    int* outer = matrix_.outerIndexPtr();
+    int* inner = matrix_.innerIndexPtr();
+    int k = 0;
+    for(int column = 0; column < size; ++column) {
+      const int v = column / 2;
+      outer[column] = k;
+      for(int row = column; row < 2 * v + 2; ++row)  // the diagonal block
+        inner[k++] = row;
+      for(int u : later[v]) {
+        inner[k++] = 2 * u;
+        inner[k++] = 2 * u + 1;
+      }
+    }
+    outer[size] = k;
+    std::fill(matrix_.valuePtr(), matrix_.valuePtr() + k, 0.0);
 
+    // Where the entry (row, col) of the lower triangle is: in column `col` of vertex v, the
+    // diagonal block comes first, then the blocks of `later[v]` in their order.
+    const auto position = [&](int row, int col) {
+      const int v = col / 2, u = row / 2;
+      if(u == v)
+        return outer[col] + row - col;
+      const std::vector<int>& n = later[v];
+      const int rank = int(std::lower_bound(n.begin(), n.end(), u) - n.begin());
+      return outer[col] + 2 - col % 2 + 2 * rank + row % 2;
+    };
     entry_index_.resize(faces_->size() * lower_entries);
     for(std::size_t f = 0; f < faces_->size(); ++f)
       for_each_lower_entry((*faces_)[f], [&](int local, int row, int col) {
-        entry_index_[f * lower_entries + local] = row < size ? index_of(row, col) : -1;
+        entry_index_[f * lower_entries + local] = row < size ? position(row, col) : -1;
       });
     diagonal_index_.resize(size);
     for(int i = 0; i < size; ++i)
-      diagonal_index_[i] = index_of(int(i), int(i));
+      diagonal_index_[i] = outer[i];
+  }
+
+  // For each free vertex, its free neighbours of larger index, sorted.
+  std::vector<std::vector<int>> later_neighbours() const
+  {
+    std::vector<std::vector<int>> later(free_);
+    for(const auto& t : *faces_)
+      for(int i = 0; i < 3; ++i) {
+        const int a = std::min(t[i], t[(i + 1) % 3]), b = std::max(t[i], t[(i + 1) % 3]);
+        if(std::size_t(b) < free_)
+          later[a].push_back(b);
+      }
+    for(std::vector<int>& n : later) {
+      std::sort(n.begin(), n.end());
+      n.erase(std::unique(n.begin(), n.end()), n.end());
+    }
+    return later;
   }
 
   // Calls fn(local, row, col) for the 21 lower entries (i >= j) of a face's 6x6 block,
@@ -350,13 +389,6 @@ private:
         if(row < col) std::swap(row, col);
         fn(local++, row, col);
       }
-  }
-
-  int index_of(int row, int col) const
-  {
-    const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col];
-    const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col + 1];
-    return int(std::lower_bound(begin, end, row) - matrix_.innerIndexPtr());
   }
 
   // A face's 9x9 ambient Hessian pulled back to the tangent variables of its vertices.
