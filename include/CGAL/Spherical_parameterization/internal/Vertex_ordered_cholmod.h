@@ -7,6 +7,7 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCore>
 
+#include <algorithm>
 #include <vector>
 
 namespace CGAL {
@@ -71,41 +72,43 @@ private:
   };
 
   // METIS on the graph of the 2x2 blocks, each vertex then expanded to its two unknowns.
+  // `cholmod_metis` gives the ordering alone; `cholmod_analyze` would add a symbolic
+  // factorization of the vertex graph that nothing uses.
   bool vertex_graph_ordering(const Matrix& m, std::vector<int>& permutation)
   {
     const Matrix vertices = vertex_graph(m);
     cholmod_sparse a = Eigen::viewAsCholmod(vertices.template selfadjointView<Eigen::Lower>());
-    const Methods saved(this->cholmod());
-    this->cholmod().nmethods = 1;
-    this->cholmod().method[0].ordering = CHOLMOD_METIS;
-    cholmod_factor* symbolic = cholmod_analyze(&a, &this->cholmod());
-    saved.restore(this->cholmod());
-    if(!symbolic)
+    std::vector<int> order(std::size_t(vertices.rows()));
+    if(!cholmod_metis(&a, nullptr, 0, false, order.data(), &this->cholmod()) || this->cholmod().status != CHOLMOD_OK)
       return false;
-    const bool ordered = this->cholmod().status == CHOLMOD_OK;
-    if(ordered) {
-      const int* order = static_cast<const int*>(symbolic->Perm);
-      permutation.resize(2 * vertices.rows());
-      for(Eigen::Index k = 0; k < vertices.rows(); ++k) {
-        permutation[2 * k] = 2 * order[k];
-        permutation[2 * k + 1] = 2 * order[k] + 1;
-      }
+    permutation.resize(2 * order.size());
+    for(std::size_t k = 0; k < order.size(); ++k) {
+      permutation[2 * k] = 2 * order[k];
+      permutation[2 * k + 1] = 2 * order[k] + 1;
     }
-    cholmod_free_factor(&symbolic, &this->cholmod());
-    return ordered;
+    return true;
   }
 
-  // The lower triangle of the n x n matrix with an entry wherever a 2x2 block has one.
+  // The lower triangle of the n x n matrix with an entry `(u, v)` wherever the 2x2 block
+  // `(u, v)`, `u >= v`, has its entry `(2u, 2v)`, as the Newton matrix's blocks all do. (A
+  // block without it is left out of the graph: only the ordering's quality suffers.)
   static Matrix vertex_graph(const Matrix& m)
   {
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(m.nonZeros() / 3);
-    for(Eigen::Index column = 0; column < m.outerSize(); ++column)
-      for(typename Matrix::InnerIterator it(m, column); it; ++it)
-        if(it.row() / 2 >= column / 2)
-          entries.emplace_back(it.row() / 2, column / 2, 1.0);
-    Matrix graph(m.rows() / 2, m.cols() / 2);
-    graph.setFromTriplets(entries.begin(), entries.end(), [](double a, double) { return a; });
+    const Eigen::Index n = m.rows() / 2;
+    Matrix graph(n, n);
+    graph.resizeNonZeros(m.nonZeros() / 4 + n);
+    int* outer = graph.outerIndexPtr();
+    int* inner = graph.innerIndexPtr();
+    int k = 0;
+    for(Eigen::Index v = 0; v < n; ++v) {
+      outer[v] = k;
+      for(typename Matrix::InnerIterator it(m, 2 * v); it; ++it)
+        if(it.row() % 2 == 0)
+          inner[k++] = int(it.row() / 2);
+    }
+    outer[n] = k;
+    graph.resizeNonZeros(k);
+    std::fill(graph.valuePtr(), graph.valuePtr() + k, 1.0);
     return graph;
   }
 };
