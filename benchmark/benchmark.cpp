@@ -21,6 +21,7 @@
 #include <CGAL/spherical_parameterize.h>
 #include <CGAL/Spherical_parameterization/Energy_mix.h>
 #include <CGAL/Spherical_parameterization/measure_distortion.h>
+#include <CGAL/Spherical_parameterization/internal/solver_threads.h>
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -385,10 +386,13 @@ struct Yardstick
 };
 
 // Median of 3 times of (symbolic analysis + numeric factorization + one solve) with
-// `Solver`; negative if it failed.
+// `Solver`; negative if it failed. CHOLMOD's OpenMP regions run on one thread, as in the
+// package's own factorizations (internal/solver_threads.h): the yardstick is not to carry
+// an overhead that the package avoids.
 template <class Solver>
 double solve_time(const Sparse& matrix, const Eigen::VectorXd& rhs)
 {
+  const CGAL::Spherical_parameterization::internal::Openmp_serial serial;
   std::vector<double> times;
   for(int r = 0; r < 3; ++r) {
     const Clock::time_point start = Clock::now();

@@ -24,6 +24,7 @@
 #include <CGAL/Spherical_parameterization/remesh_on_icosphere.h>
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/solver_threads.h>
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
 #include <CGAL/Spherical_parameterization/internal/Vertex_ordered_cholmod.h>
 #endif
@@ -35,6 +36,10 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
+
+#if defined(__unix__)
+#include <dlfcn.h>
+#endif
 
 #include <algorithm>
 #include <array>
@@ -767,6 +772,52 @@ void test_cholmod_traits()
 #endif
 }
 
+/// The guards around CHOLMOD's calls (internal/solver_threads.h): inside, OpenMP regions
+/// are inactive (max-active-levels 0) and OpenBLAS has one thread less (at least one); after,
+/// both settings are back. Skipped for a library the process does not have.
+void test_solver_threads()
+{
+#if defined(__unix__)
+  using Get = int (*)();
+  using Set = void (*)(int);
+  const auto get_levels = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
+  const auto set_levels = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+  if(get_levels && set_levels) {
+    set_levels(3);
+    int inside = -1;
+    {
+      const SP::internal::Openmp_serial serial;
+      inside = get_levels();
+    }
+    const int after = get_levels();
+    report("[solver threads] OpenMP max active levels inside " + std::to_string(inside) + ", after " +
+             std::to_string(after) + " (before 3)",
+           inside == 0 && after == 3);
+  } else {
+    skip("[solver threads] OpenMP", "no OpenMP runtime in the process");
+  }
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_KEEP_BLAS_THREADS
+  const auto get_blas = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  const auto set_blas = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  if(get_blas && set_blas) {
+    const int before = get_blas();
+    int inside = -1;
+    {
+      const SP::internal::Blas_thread_slack slack;
+      inside = get_blas();
+    }
+    report("[solver threads] OpenBLAS threads before " + std::to_string(before) + ", inside " +
+             std::to_string(inside) + ", after " + std::to_string(get_blas()),
+           inside == std::max(1, before - 1) && get_blas() == before);
+  } else {
+    skip("[solver threads] OpenBLAS", "OpenBLAS is not the BLAS of the process");
+  }
+#endif
+#else
+  skip("[solver threads]", "not a Unix system");
+#endif
+}
+
 int main(int argc, char** argv)
 {
   rng.seed(77);
@@ -807,6 +858,7 @@ int main(int argc, char** argv)
   // Last: its random matrix draws from `rng`, which would otherwise shift the other tests' draws.
   test_vertex_ordered_cholmod();
   test_cholmod_traits();
+  test_solver_threads();
 
   std::cerr << "time total: " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
             << " s" << std::endl;

@@ -8,7 +8,7 @@
 #include <Eigen/SparseCore>
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
 #include <CGAL/Spherical_parameterization/internal/Vertex_ordered_cholmod.h>
-#include <CGAL/Spherical_parameterization/internal/blas_threads.h>
+#include <CGAL/Spherical_parameterization/internal/solver_threads.h>
 #include <Eigen/CholmodSupport>
 #endif
 
@@ -62,6 +62,9 @@ private:
 /// the cores (one on two cores; the count is restored after each): OpenBLAS's spinning
 /// threads slow down badly when another process holds a core. Define `CGAL_SPHERICAL_PARAMETERIZATION_KEEP_BLAS_THREADS` to keep
 /// OpenBLAS's own setting (up to 15% faster on an idle machine).
+/// CHOLMOD's own OpenMP regions run on the calling thread alone: Debian's CHOLMOD opens them
+/// with 4 threads whatever the cores, for loops as short as clearing a supernode, and on two
+/// cores they cost bunny00 15 to 20% of its time.
 /// \cgalModels `SphericalSparseSolverTraits`
 class Cholmod_traits
 {
@@ -90,12 +93,14 @@ public:
   bool factorize(const Matrix& m)
   {
     const internal::Blas_thread_slack slack;
+    const internal::Openmp_serial serial;
     solver_.factorize(m);
     return solver_.info() == Eigen::Success;
   }
   Vector solve(const Vector& b) const
   {
     const internal::Blas_thread_slack slack;
+    const internal::Openmp_serial serial;
     return solver_.solve(b);
   }
 

@@ -1,10 +1,10 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_BLAS_THREADS_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_BLAS_THREADS_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SOLVER_THREADS_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SOLVER_THREADS_H
 
-#if defined(__unix__) && !defined(CGAL_SPHERICAL_PARAMETERIZATION_KEEP_BLAS_THREADS)
+#if defined(__unix__)
 #include <dlfcn.h>
 #endif
 
@@ -68,8 +68,59 @@ private:
   int saved_ = 0;
 };
 
+/// While alive, the OpenMP parallel regions that the calling thread starts run on that
+/// thread alone (its `max-active-levels` is 0; restored after). Found at run time (`dlsym`):
+/// nothing is linked, and without an OpenMP runtime in the process it does nothing.
+///
+/// Why: Debian's CHOLMOD (3.0) opens OpenMP regions of a fixed 4 threads in its supernodal
+/// factorization, for loops as short as clearing a supernode, whatever the cores. On two
+/// cores the threads wait on each other at every region's barrier. With one thread
+/// (`OMP_THREAD_LIMIT=1`, measured side by side, 3 runs each): bunny00 Dirichlet 3.85 to
+/// 4.24 s -> 3.27 to 3.36 s, Combined 2.23 to 2.48 s -> 1.83 to 1.91 s.
+class Openmp_serial
+{
+public:
+  Openmp_serial()
+  {
+    const Openmp& omp = openmp();
+    if(omp.get && omp.set) {
+      saved_ = omp.get();
+      omp.set(0);
+    }
+  }
+  ~Openmp_serial()
+  {
+    if(saved_ >= 0)
+      openmp().set(saved_);
+  }
+  Openmp_serial(const Openmp_serial&) = delete;
+  Openmp_serial& operator=(const Openmp_serial&) = delete;
+
+private:
+  struct Openmp
+  {
+    int (*get)() = nullptr;
+    void (*set)(int) = nullptr;
+  };
+
+  static const Openmp& openmp()
+  {
+    static const Openmp functions = [] {
+      Openmp f;
+#if defined(__unix__)
+      f.get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
+      f.set = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+#endif
+      return f;
+    }();
+    return functions;
+  }
+
+  int saved_ = -1;
+};
+
 } // namespace internal
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_BLAS_THREADS_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SOLVER_THREADS_H
