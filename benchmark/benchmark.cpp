@@ -26,6 +26,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
+#include <CGAL/Spherical_parameterization/internal/huge_page_allocation.h>
 #include <Eigen/CholmodSupport>
 #endif
 
@@ -386,13 +387,17 @@ struct Yardstick
 };
 
 // Median of 3 times of (symbolic analysis + numeric factorization + one solve) with
-// `Solver`; negative if it failed. CHOLMOD's OpenMP regions run on one thread, as in the
-// package's own factorizations (internal/solver_threads.h): the yardstick is not to carry
+// `Solver`; negative if it failed. CHOLMOD's OpenMP regions run on one thread and its large
+// blocks are backed by huge pages, as in the package's own factorizations
+// (internal/solver_threads.h, internal/huge_page_allocation.h): the yardstick is not to carry
 // an overhead that the package avoids.
 template <class Solver>
 double solve_time(const Sparse& matrix, const Eigen::VectorXd& rhs)
 {
   const CGAL::Spherical_parameterization::internal::Openmp_serial serial;
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
+  const CGAL::Spherical_parameterization::internal::Cholmod_huge_pages huge_pages;
+#endif
   std::vector<double> times;
   for(int r = 0; r < 3; ++r) {
     const Clock::time_point start = Clock::now();

@@ -27,6 +27,7 @@
 #include <CGAL/Spherical_parameterization/internal/solver_threads.h>
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
 #include <CGAL/Spherical_parameterization/internal/Vertex_ordered_cholmod.h>
+#include <CGAL/Spherical_parameterization/internal/huge_page_allocation.h>
 #endif
 
 #include "test_support.h"
@@ -45,6 +46,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -818,6 +820,53 @@ void test_solver_threads()
 #endif
 }
 
+/// The guard that backs CHOLMOD's large blocks with huge pages
+/// (internal/huge_page_allocation.h): inside it, CHOLMOD's allocations of 4 MB or more are
+/// aligned to 2 MB (they come from `huge_page_malloc`), nested guards keep it, and after the
+/// last one CHOLMOD's default allocator is back. The blocks themselves: zeroed by the calloc,
+/// usable, released by `std::free`.
+void test_huge_pages()
+{
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
+  constexpr std::size_t huge_page = std::size_t(1) << 21, size = 4 * huge_page;
+  auto* block = static_cast<unsigned char*>(SP::internal::huge_page_calloc(size, 1));
+  const bool zeroed = block && std::all_of(block, block + size, [](unsigned char c) { return c == 0; });
+  if(block)
+    std::fill(block, block + size, 1);
+  std::free(block);
+  report(std::string("[huge pages] 8 MB calloc zeroed: ") + (zeroed ? "yes" : "no"), zeroed);
+#if defined(__linux__) && SUITESPARSE_MAIN_VERSION < 7
+  using Guard = SP::internal::Cholmod_huge_pages;
+  cholmod_common common;
+  cholmod_start(&common);
+  const bool before = Guard::active();
+  bool inside = false, nested = false, after_nested = false, block_aligned = false;
+  {
+    const Guard guard;
+    inside = Guard::active();
+    {
+      const Guard inner;
+      nested = Guard::active();
+    }
+    after_nested = Guard::active();
+    void* factor_like = cholmod_malloc(size, 1, &common);
+    block_aligned = factor_like && reinterpret_cast<std::uintptr_t>(factor_like) % huge_page == 0;
+    cholmod_free(size, 1, factor_like, &common);
+  }
+  const bool after = Guard::active();
+  cholmod_finish(&common);
+  report(std::string("[huge pages] CHOLMOD's allocator replaced before/inside/nested/after nested/after: ") +
+           std::to_string(before) + std::to_string(inside) + std::to_string(nested) + std::to_string(after_nested) +
+           std::to_string(after) + ", its 8 MB block 2 MB-aligned: " + (block_aligned ? "yes" : "no"),
+         !before && inside && nested && after_nested && !after && block_aligned);
+#else
+  skip("[huge pages] CHOLMOD's allocator", "not Linux, or SuiteSparse 7 or later");
+#endif
+#else
+  skip("[huge pages]", "built without CHOLMOD");
+#endif
+}
+
 int main(int argc, char** argv)
 {
   rng.seed(77);
@@ -859,6 +908,7 @@ int main(int argc, char** argv)
   test_vertex_ordered_cholmod();
   test_cholmod_traits();
   test_solver_threads();
+  test_huge_pages();
 
   std::cerr << "time total: " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
             << " s" << std::endl;
