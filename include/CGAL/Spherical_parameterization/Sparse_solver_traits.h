@@ -48,12 +48,18 @@ private:
 /// The same with CHOLMOD's Cholesky factorization (SuiteSparse), about twice as fast on
 /// large meshes. Available when `CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD` is defined.
 /// CHOLMOD chooses per matrix between its supernodal factorization (dense BLAS blocks) and
-/// its simplicial one, by the flops per entry of the factor: supernodal from 160 on, where
-/// CHOLMOD's default switch is 40. Measured per factorization, one BLAS thread (2n x 2n
-/// Newton matrices of the coarse-to-fine levels; flops per entry in brackets): simplicial
-/// 5 times faster at 1000 rows (18 to 31), 3 times at 3000, 2 times at 9000 to 52000 on
-/// armadillo and diplodocus (53 to 125), 1.5 times at 27000 on bunny00 (132); supernodal
-/// 14% faster at 75000 rows on bunny00 (213), 36% at 300000 rows.
+/// its simplicial one, by the flops per entry of the factor: supernodal from 80 on, where
+/// CHOLMOD's default switch is 40. The supernodes are coarser than CHOLMOD's default: up to
+/// 32, 96 and 192 columns merged whatever the zeros they add, under 80% and under 10% of
+/// zeros (`nrelax`; CHOLMOD's default 4, 16, 48). Each supernode costs BLAS calls and, in
+/// Debian's CHOLMOD, OpenMP regions whose set-up outweighs the zeros. Measured per
+/// factorization and solve, one process, both settings in turn (2x2-block matrices of the
+/// vertex graphs; flops per entry in brackets): 302k faces 0.86 -> 0.55 s, bunny00 0.174 ->
+/// 0.112 s, and supernodal now faster than simplicial from about 80: armadillo (125) 0.121
+/// -> 0.065 s, diplodocus (94) 0.076 -> 0.054 s, retinal (111) 0.017 -> 0.011 s; equal at 69
+/// to 74 (man, homer, blobby), slower under (bull (39) 0.007 -> 0.011 s). The factor is
+/// larger: the peak memory at 1.2M faces grew from 2.45 to 3.2 GB (2.7 GB with 16, 48, 96
+/// columns, which were 10 to 20% slower).
 /// From 50000 vertices on, the fill-reducing ordering is METIS's on the mesh's vertex graph,
 /// expanded to the two unknowns of each vertex (a matrix of even size is taken to be made of
 /// such 2x2 blocks; any other matrix is still factored correctly, perhaps with more fill):
@@ -88,6 +94,7 @@ public:
     // indefinite matrix without failing (test_parameterizer), and the failure is how the
     // Newton solver learns that its shift is too small.
     c.final_ll = 1;
+    relax_supernodes(c);
   }
 
   void analyze_pattern(const Matrix& m)
@@ -110,6 +117,13 @@ public:
 
   /// True if the last analysis chose the supernodal factorization.
   bool is_supernodal() const { return solver_.is_supernodal(); }
+
+  /// Sets in `c` the supernode sizes described above (the benchmark's yardstick uses them).
+  static void relax_supernodes(cholmod_common& c)
+  {
+    for(int i = 0; i < 3; ++i)
+      c.nrelax[i] = relaxed_columns[i];
+  }
   /// \endcond
 
 private:
@@ -122,7 +136,8 @@ private:
   };
 
   static constexpr Eigen::Index vertex_ordering_from = 50000;  // vertices
-  static constexpr double supernodal_from = 160;               // flops per entry of the factor
+  static constexpr double supernodal_from = 80;                // flops per entry of the factor
+  static constexpr std::size_t relaxed_columns[3] = {32, 96, 192};  // see the class comment
   internal::Vertex_ordered_cholmod<Matrix> solver_;
 };
 
