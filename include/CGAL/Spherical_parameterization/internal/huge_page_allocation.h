@@ -58,7 +58,8 @@ inline void* huge_page_calloc(std::size_t count, std::size_t size)
 /// Why: fresh memory is expensive on the machines we measured (virtual machines, a page fault
 /// per 4 kB page). A factorization of the 2n x 2n Newton matrix at 302k faces took 1.2 s, and
 /// 2.0 s the first time on a level (the factor's first touch); with huge pages 0.85 s and
-/// 1.25 s (doc/NOTES.md, round eleven).
+/// 1.25 s. Measured in one process, guard on and off in turn: 0.93 -> 0.80 s and 1.50 -> 1.17
+/// s (doc/NOTES.md, round eleven).
 class Cholmod_huge_pages
 {
 public:
