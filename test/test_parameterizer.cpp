@@ -24,6 +24,7 @@
 #include <CGAL/Spherical_parameterization/remesh_on_icosphere.h>
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/parallel_for.h>
 #include <CGAL/Spherical_parameterization/internal/solver_threads.h>
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
 #include <CGAL/Spherical_parameterization/internal/Vertex_ordered_cholmod.h>
@@ -54,7 +55,9 @@
 #include <numeric>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace SP = CGAL::Spherical_parameterization;
@@ -744,6 +747,68 @@ void test_vertex_ordered_cholmod()
 #endif
 }
 
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
+/// A supernodal factor allocated ahead (`allocate_factor()`, on another thread as the
+/// coarse-to-fine solve does it): the numbers exist before the first factorization, which
+/// still refuses an indefinite matrix and then gives the same solution, bit for bit, as a
+/// factor allocated by the factorization itself (`expected`).
+void test_allocated_factor(const Sparse_matrix& m, const Eigen::VectorXd& b, const Eigen::VectorXd& expected)
+{
+  SP::internal::Vertex_ordered_cholmod<Sparse_matrix> cholmod;
+  cholmod.cholmod().print = 0;
+  cholmod.analyzePattern(m);
+  const bool symbolic_before = !cholmod.has_numeric_factor();
+  cholmod.allocate_numeric_factor();
+  const bool numeric_after = cholmod.has_numeric_factor();
+  report(std::string("[allocated factor] symbolic after the analysis, numeric after allocate_numeric_factor(): ") +
+           (symbolic_before ? "yes" : "no") + ", " + (numeric_after ? "yes" : "no"),
+         symbolic_before && numeric_after);
+
+  SP::Cholmod_traits solver;
+  solver.analyze_pattern(m);
+  SP::internal::Background_task<CGAL::Parallel_tag> allocation([&] { solver.allocate_factor(); });
+  allocation.wait();
+  const bool indefinite_refused = !solver.factorize(indefinite_copy(m));
+  const bool factored = solver.factorize(m);
+  const double difference = factored ? (solver.solve(b) - expected).cwiseAbs().maxCoeff()
+                                     : std::numeric_limits<double>::infinity();
+  report("[allocated factor] Cholmod_traits::allocate_factor() on another thread: indefinite matrix refused: " +
+           std::string(indefinite_refused ? "yes" : "no") + ", largest difference to the usual factor " + str(difference),
+         indefinite_refused && difference == 0);
+}
+#endif
+
+/// `Background_task`: with `Parallel_tag` the task runs on another thread before `wait()`
+/// returns; with `Sequential_tag` on the calling thread, in `wait()`; an exception of the
+/// task reaches `wait()`.
+void test_background_task()
+{
+  const std::thread::id caller = std::this_thread::get_id();
+  std::thread::id parallel_thread, sequential_thread;
+  bool ran_before_wait = false;
+  {
+    SP::internal::Background_task<CGAL::Parallel_tag> task([&] { parallel_thread = std::this_thread::get_id(); });
+    task.wait();
+  }
+  {
+    SP::internal::Background_task<CGAL::Sequential_tag> task([&] { sequential_thread = std::this_thread::get_id(); });
+    ran_before_wait = sequential_thread != std::thread::id();
+    task.wait();
+  }
+  bool rethrown = false;
+  try {
+    SP::internal::Background_task<CGAL::Parallel_tag> task([] { throw std::runtime_error("task failed"); });
+    task.wait();
+  } catch(const std::runtime_error&) {
+    rethrown = true;
+  }
+  report(std::string("[background task] parallel on another thread: ") + (parallel_thread != caller ? "yes" : "no") +
+           ", sequential in wait() on the caller: " + (!ran_before_wait && sequential_thread == caller ? "yes" : "no") +
+           ", exception reaches wait(): " + (rethrown ? "yes" : "no"),
+         parallel_thread != caller && parallel_thread != std::thread::id() && !ran_before_wait &&
+           sequential_thread == caller && rethrown);
+}
+
 /// `Cholmod_traits` on both of CHOLMOD's factorizations, simplicial for a small mesh and
 /// supernodal for a large one: each solves a positive definite system exactly, and each
 /// reports an indefinite matrix (with a positive diagonal) as a failure, which the Newton
@@ -768,6 +833,8 @@ void test_cholmod_traits()
     report(name + " indefinite matrix refused: " + (indefinite_refused ? "yes" : "no") + ", relative residual " +
              str(residual),
            indefinite_refused && residual < 1e-10);
+    if(supernodal && factored)
+      test_allocated_factor(m, b, solver.solve(b));
   }
 #else
   skip("[Cholmod_traits]", "built without CHOLMOD");
@@ -909,6 +976,7 @@ int main(int argc, char** argv)
   test_cholmod_traits();
   test_solver_threads();
   test_huge_pages();
+  test_background_task();
 
   std::cerr << "time total: " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
             << " s" << std::endl;

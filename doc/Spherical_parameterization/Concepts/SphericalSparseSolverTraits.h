@@ -52,5 +52,11 @@ public:
   /// The solution `x` of `m x = b` for the matrix `m` of the last successful `factorize()`.
   Vector solve(const Vector& b) const;
 
+  /// Optional. Allocates the memory of the factor of the analysed pattern and writes it once,
+  /// so that the first `factorize()` does not meet fresh memory. The solver calls it, if the
+  /// model has it, on another thread while it works on the coarser levels, between
+  /// `analyze_pattern()` and the first `factorize()`, when nothing else uses the object.
+  void allocate_factor();
+
   /// @}
 };

@@ -115,6 +115,18 @@ public:
     return solver_.solve(b);
   }
 
+  /// Allocates the factor's numbers for the analysed pattern and writes them once, so that
+  /// the first factorization does not meet fresh memory: 0.6 to 0.9 s of page faults for the
+  /// 392 MB factor at 302k faces on the machine we measured (a virtual machine), the first
+  /// factorization taking 1.45 s against 0.6 s for the next ones. Another thread may do it
+  /// while this object is otherwise unused. Supernodal factors only: the simplicial ones are
+  /// small.
+  void allocate_factor()
+  {
+    const internal::Cholmod_huge_pages huge_pages;
+    solver_.allocate_numeric_factor();
+  }
+
   /// True if the last analysis chose the supernodal factorization.
   bool is_supernodal() const { return solver_.is_supernodal(); }
 

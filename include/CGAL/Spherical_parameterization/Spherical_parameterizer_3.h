@@ -394,10 +394,14 @@ private:
     // Independent, and each about 1.2 s at 300k faces (the analysis mostly METIS).
     internal::parallel_invoke<ConcurrencyTag>(
       [&] { hierarchy(small ? input_.number_of_vertices() : coarse_vertices); }, [&] { make_input_solver(); });
+    // The input's first assembly and factorization would meet fresh memory, slow on virtual
+    // machines: it is written once on another core while the coarser levels run.
+    internal::Background_task<ConcurrencyTag> input_memory([this] { input_.solver->prepare_memory(); });
     internal::Coarse_to_fine<Newton> levels(input_.soup, *hierarchy_, level_ratio);
     internal::Points level_x;
     Level* coarse = levels.level();
     if(!coarse || !coarse_start(*coarse, level_x)) {  // the input itself, from its own central projection
+      input_memory.wait();
       if(!coarse_start(input_, x))
         return false;
       robust_stages(run, input_, x, visitor);
@@ -413,6 +417,8 @@ private:
       Level* level = levels.level();
       if(level)
         level->gather(x, level_x);
+      if(!level)
+        input_memory.wait();
       Level& current = level ? *level : input_;
       internal::Points& y = level ? level_x : x;
       run.stages += std::string(" | ") + (level ? "" : "input ") + std::to_string(current.number_of_vertices()) + "v:";

@@ -59,6 +59,24 @@ public:
 
   bool is_supernodal() const { return this->m_cholmodFactor && this->m_cholmodFactor->is_super; }
 
+  /// True once the factor has numbers (a factorization or `allocate_numeric_factor()`).
+  bool has_numeric_factor() const { return this->m_cholmodFactor && this->m_cholmodFactor->xtype != CHOLMOD_PATTERN; }
+
+  /// Allocates the numeric part of an analysed supernodal factor, as its first factorization
+  /// would, and writes it once, so that this factorization does not meet fresh memory.
+  void allocate_numeric_factor()
+  {
+    cholmod_factor* factor = this->m_cholmodFactor;
+    if(!factor || !factor->is_super || factor->xtype != CHOLMOD_PATTERN)
+      return;
+    // The conversion `cholmod_super_numeric` makes of a symbolic factor.
+    if(!cholmod_change_factor(CHOLMOD_REAL, true, true, true, true, factor, &this->cholmod())) {
+      this->cholmod().status = CHOLMOD_OK;  // left symbolic: the factorization allocates it
+      return;
+    }
+    std::fill_n(static_cast<double*>(factor->x), factor->xsize, 0.0);
+  }
+
 private:
   struct Methods
   {

@@ -7,7 +7,11 @@
 #include <CGAL/tags.h>
 
 #include <cstddef>
+#include <functional>
+#include <future>
+#include <system_error>
 #include <type_traits>
+#include <utility>
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/blocked_range.h>
@@ -54,6 +58,46 @@ void parallel_invoke(const First& first, const Second& second)
   first();
   second();
 }
+
+/// Runs a task from construction to `wait()` on a thread of its own with `CGAL::Parallel_tag`
+/// (a dedicated thread rather than a TBB task, which TBB could run on the waiting thread
+/// inside an unrelated `parallel_for`); with `CGAL::Sequential_tag`, or if no thread could
+/// be started, in `wait()`. The destructor waits for a started task, and runs none.
+template <class ConcurrencyTag>
+class Background_task
+{
+public:
+  explicit Background_task(std::function<void()> task)
+  {
+    if constexpr(std::is_same<ConcurrencyTag, CGAL::Parallel_tag>::value) {
+      try {
+        done_ = std::async(std::launch::async, task);
+        return;
+      } catch(const std::system_error&) {
+      }
+    }
+    task_ = std::move(task);
+  }
+  ~Background_task()
+  {
+    if(done_.valid())
+      done_.wait();
+  }
+  Background_task(const Background_task&) = delete;
+  Background_task& operator=(const Background_task&) = delete;
+
+  void wait()
+  {
+    if(done_.valid())
+      done_.get();
+    if(task_)
+      std::exchange(task_, nullptr)();
+  }
+
+private:
+  std::future<void> done_;
+  std::function<void()> task_;
+};
 
 } // namespace internal
 } // namespace Spherical_parameterization
