@@ -386,6 +386,13 @@ void test_paper_pipeline(Mesh& mesh, const std::string& mesh_name, const std::st
          "start " + str(e0) + ", final " + str(e1));
   report(name + ": Result.energy is the energy of the written map (rel 1e-9)",
          std::abs(r.energy - e1) <= 1e-9 * std::abs(e1), "Result " + str(r.energy) + ", recomputed " + str(e1));
+#ifdef CGAL_LINKED_WITH_TBB
+  // Face constants and face values computed in parallel, summed in the same order.
+  const SP::internal::Spherical_energy<Energy> parallel(soup, energy, true, CGAL::Parallel_tag());
+  const double p1 = parallel.template value<CGAL::Parallel_tag>(written);
+  report(name + ": Spherical_energy with Parallel_tag gives the same energy, bit for bit", p1 == e1,
+         "parallel " + str(p1) + ", sequential " + str(e1));
+#endif
   bool monotone = !energies.empty() && energies.front() < e0;
   for(std::size_t i = 1; i < energies.size(); ++i) monotone = monotone && energies[i] <= energies[i - 1];
   report(name + ": the visitor sees the energy decrease at every iteration, from below the start's",

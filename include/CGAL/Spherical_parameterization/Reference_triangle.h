@@ -65,6 +65,7 @@ struct Jacobian_face_data
   std::array<double, 3> weights;  ///< `exact_half_cotangents()` of the input triangle
   double input_area;              ///< the area of the input triangle
 
+  Jacobian_face_data() = default;
   /// The data of the input triangle `r`.
   explicit Jacobian_face_data(const Reference_triangle& r) : weights(r.exact_half_cotangents()), input_area(r.area) {}
 };

@@ -350,7 +350,7 @@ private:
     level.solver = std::make_unique<Newton>(level.soup, patch.free_vertices);
     internal::Points y;
     level.gather(x, y);
-    const double before = internal::Spherical_energy<Energy>(level.soup, energy_, run.correction).value(y);
+    const double before = internal::Spherical_energy<Energy>(level.soup, energy_, run.correction, ConcurrencyTag()).template value<ConcurrencyTag>(y);
     const double tolerance = run.options.tolerance;
     run.options.held_energy = minimum - before;
     run.options.tolerance = tolerance / 100;
@@ -489,7 +489,7 @@ private:
   {
     run.options.stop_when_fold_free = stop_when_fold_free;
     run.options.boost_search = !stop_when_fold_free && run.pipeline == Pipeline::ROBUST;
-    const internal::Spherical_energy<StageEnergy> spherical(level.soup, energy, run.correction);
+    const internal::Spherical_energy<StageEnergy> spherical(level.soup, energy, run.correction, ConcurrencyTag());
     run.options.stage = stage;
     run.options.keep_fold_free = keep_fold_free;
     run.options.iteration_offset = run.iterations;
@@ -518,7 +518,8 @@ private:
     result.valid = validity.is_valid();
     result.iterations = run.iterations;
     // The chosen energy alone: the target stage also carries the fold barrier.
-    result.energy = internal::Spherical_energy<Energy>(input_.soup, energy_, run.correction).value(x);
+    result.energy =
+      internal::Spherical_energy<Energy>(input_.soup, energy_, run.correction, ConcurrencyTag()).template value<ConcurrencyTag>(x);
     result.flipped = validity.flipped;
     result.degenerate = validity.degenerate;
     result.degree = validity.degree;  // the soup's faces carry the input's orientation outward

@@ -8,9 +8,11 @@
 #include <CGAL/Spherical_parameterization/Reference_triangle.h>
 #include <CGAL/Spherical_parameterization/d_min_correction.h>
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/parallel_for.h>
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace CGAL {
@@ -24,12 +26,22 @@ template <class Energy>
 class Spherical_energy
 {
 public:
-  Spherical_energy(const Triangle_soup& soup, const Energy& energy, bool d_min_correction = true)
+  /// With `CGAL::Parallel_tag`, the per-face constants are computed in parallel where the
+  /// policy's `Face_data` is default constructible (0.2 s on one core at 302k faces).
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
+  Spherical_energy(const Triangle_soup& soup, const Energy& energy, bool d_min_correction = true,
+                   ConcurrencyTag = ConcurrencyTag())
     : faces_(&soup.faces), energy_(energy), correction_(d_min_correction)
   {
-    data_.reserve(soup.faces.size());
-    for(std::size_t f = 0; f < soup.faces.size(); ++f)
-      data_.push_back(energy_.face_data(soup.reference_triangle(f)));
+    const std::size_t n = soup.faces.size();
+    if constexpr(std::is_default_constructible<typename Energy::Face_data>::value) {
+      data_.resize(n);
+      parallel_for<ConcurrencyTag>(n, [&](std::size_t f) { data_[f] = energy_.face_data(soup.reference_triangle(f)); });
+    } else {
+      data_.reserve(n);
+      for(std::size_t f = 0; f < n; ++f)
+        data_.push_back(energy_.face_data(soup.reference_triangle(f)));
+    }
   }
 
   std::size_t number_of_faces() const { return faces_->size(); }
@@ -48,9 +60,22 @@ public:
     return e * inverse_squared_d_min(chord);
   }
 
-  /// The total energy, `+inf` if any face is past the barrier or not finite.
+  /// The total energy, `+inf` if any face is past the barrier or not finite; the faces
+  /// evaluated in parallel with `CGAL::Parallel_tag`, summed in their order either way.
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
   double value(const Points& x) const
   {
+    if constexpr(std::is_same<ConcurrencyTag, CGAL::Parallel_tag>::value) {
+      std::vector<double> values(data_.size());
+      parallel_for<ConcurrencyTag>(data_.size(), [&](std::size_t f) { values[f] = face<double>(f, x); });
+      double sum = 0;
+      for(double e : values) {
+        if(!std::isfinite(e))
+          return std::numeric_limits<double>::infinity();
+        sum += e;
+      }
+      return sum;
+    }
     double sum = 0;
     for(std::size_t f = 0; f < data_.size(); ++f) {
       const double e = face<double>(f, x);
