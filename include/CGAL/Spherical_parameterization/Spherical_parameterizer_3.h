@@ -350,7 +350,8 @@ private:
     level.solver = std::make_unique<Newton>(level.soup, patch.free_vertices);
     internal::Points y;
     level.gather(x, y);
-    const double before = internal::Spherical_energy<Energy>(level.soup, energy_, run.correction, ConcurrencyTag()).template value<ConcurrencyTag>(y);
+    const internal::Spherical_energy<Energy> patch_energy(level.soup, energy_, run.correction, ConcurrencyTag());
+    const double before = patch_energy.template value<ConcurrencyTag>(y);
     const double tolerance = run.options.tolerance;
     run.options.held_energy = minimum - before;
     run.options.tolerance = tolerance / 100;

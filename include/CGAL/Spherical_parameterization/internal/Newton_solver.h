@@ -578,13 +578,7 @@ private:
       if(with_barrier_)
         face_value_[f] += barrier<double>(f, x);
     });
-    double sum = 0;
-    for(double e : face_value_) {
-      if(!std::isfinite(e))
-        return std::numeric_limits<double>::infinity();
-      sum += e;
-    }
-    return sum;
+    return finite_sum(face_value_);
   }
 
   // Armijo backtracking from `alpha`; returns the accepted energy (or +inf) with the point in `trial`.

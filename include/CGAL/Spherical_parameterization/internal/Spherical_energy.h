@@ -19,6 +19,19 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
+/// The sum of `values` in their order (so that it does not depend on how they were
+/// computed), or `+inf` if one is not finite.
+inline double finite_sum(const std::vector<double>& values)
+{
+  double sum = 0;
+  for(double e : values) {
+    if(!std::isfinite(e))
+      return std::numeric_limits<double>::infinity();
+    sum += e;
+  }
+  return sum;
+}
+
 /// The energy of a sphere map: `sum_f d_min(f)^-2 * E_flat(f)` (Friedel et al., Section 1),
 /// or the plain flat sum when the correction is off. The per-face constants of the energy
 /// policy are computed once from the reference triangles.
@@ -65,25 +78,9 @@ public:
   template <class ConcurrencyTag = CGAL::Sequential_tag>
   double value(const Points& x) const
   {
-    if constexpr(std::is_same<ConcurrencyTag, CGAL::Parallel_tag>::value) {
-      std::vector<double> values(data_.size());
-      parallel_for<ConcurrencyTag>(data_.size(), [&](std::size_t f) { values[f] = face<double>(f, x); });
-      double sum = 0;
-      for(double e : values) {
-        if(!std::isfinite(e))
-          return std::numeric_limits<double>::infinity();
-        sum += e;
-      }
-      return sum;
-    }
-    double sum = 0;
-    for(std::size_t f = 0; f < data_.size(); ++f) {
-      const double e = face<double>(f, x);
-      if(!std::isfinite(e))
-        return std::numeric_limits<double>::infinity();
-      sum += e;
-    }
-    return sum;
+    std::vector<double> values(data_.size());
+    parallel_for<ConcurrencyTag>(data_.size(), [&](std::size_t f) { values[f] = face<double>(f, x); });
+    return finite_sum(values);
   }
 
 private:
