@@ -908,7 +908,13 @@ void test_huge_pages()
   if(block)
     std::fill(block, block + size, 1);
   std::free(block);
-  report(std::string("[huge pages] 8 MB calloc zeroed: ") + (zeroed ? "yes" : "no"), zeroed);
+  constexpr std::size_t small = 1000;  // under 4 MB: std::calloc
+  auto* small_block = static_cast<double*>(SP::internal::huge_page_calloc(small, sizeof(double)));
+  const bool small_zeroed = small_block && std::all_of(small_block, small_block + small, [](double d) { return d == 0; });
+  std::free(small_block);
+  report(std::string("[huge pages] calloc zeroed, 8 MB: ") + (zeroed ? "yes" : "no") + ", 8 kB: " +
+           (small_zeroed ? "yes" : "no"),
+         zeroed && small_zeroed);
 #if defined(__linux__) && SUITESPARSE_MAIN_VERSION < 7
   using Guard = SP::internal::Cholmod_huge_pages;
   cholmod_common common;

@@ -18,14 +18,16 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
+constexpr std::size_t huge_page = std::size_t(1) << 21;
+constexpr std::size_t huge_page_block = 2 * huge_page;  // the smallest block put on huge pages
+
 /// `std::malloc`, except that a block of 4 MB or more is aligned to 2 MB and asks the kernel
 /// for transparent huge pages (`madvise(MADV_HUGEPAGE)`), where Linux has them. The block is
 /// released with `std::free` either way.
 inline void* huge_page_malloc(std::size_t size)
 {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::size_t huge_page = std::size_t(1) << 21;
-  if(size >= 2 * huge_page) {
+  if(size >= huge_page_block) {
     void* block = nullptr;
     if(posix_memalign(&block, huge_page, size) != 0)
       return nullptr;
@@ -36,11 +38,13 @@ inline void* huge_page_malloc(std::size_t size)
   return std::malloc(size);
 }
 
-/// `std::calloc` on `huge_page_malloc`.
+/// `std::calloc` on `huge_page_malloc` (`std::calloc` itself for a small block).
 inline void* huge_page_calloc(std::size_t count, std::size_t size)
 {
   if(size != 0 && count > std::size_t(-1) / size)
     return nullptr;
+  if(count * size < huge_page_block)
+    return std::calloc(count, size);
   void* block = huge_page_malloc(count * size);
   if(block)
     std::memset(block, 0, count * size);

@@ -63,6 +63,9 @@ private:
 /// While alive, OpenBLAS (when it is the BLAS of the process) runs on one thread less than
 /// it is set to (one thread on two cores), leaving a core of slack. Any other BLAS is left
 /// alone. Define `CGAL_SPHERICAL_PARAMETERIZATION_KEEP_BLAS_THREADS` to turn this off.
+/// The setting is the process's: two of these alive on two threads at once could restore
+/// each other's values, so the package calls CHOLMOD's BLAS from one thread at a time (the
+/// factor allocated on another thread, `Cholmod_traits::allocate_factor()`, needs no BLAS).
 ///
 /// Why: OpenBLAS's threads spin while they wait. When another process holds a core, a
 /// CHOLMOD factorization with two BLAS threads on two cores slows down badly: bunny00 after
