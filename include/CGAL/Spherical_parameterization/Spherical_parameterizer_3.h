@@ -418,7 +418,7 @@ private:
       Level* level = levels.level();
       if(level)
         level->gather(x, level_x);
-      if(!level)
+      else
         input_memory.wait();
       Level& current = level ? *level : input_;
       internal::Points& y = level ? level_x : x;
@@ -519,8 +519,8 @@ private:
     result.valid = validity.is_valid();
     result.iterations = run.iterations;
     // The chosen energy alone: the target stage also carries the fold barrier.
-    result.energy =
-      internal::Spherical_energy<Energy>(input_.soup, energy_, run.correction, ConcurrencyTag()).template value<ConcurrencyTag>(x);
+    const internal::Spherical_energy<Energy> input_energy(input_.soup, energy_, run.correction, ConcurrencyTag());
+    result.energy = input_energy.template value<ConcurrencyTag>(x);
     result.flipped = validity.flipped;
     result.degenerate = validity.degenerate;
     result.degree = validity.degree;  // the soup's faces carry the input's orientation outward
