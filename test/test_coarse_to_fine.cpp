@@ -340,6 +340,28 @@ void test_floor_patch()
          "lowest share of the floor " + str(lowest_before / floor) + " -> " + str(lowest_after / floor));
 }
 
+// The slow capped tail: a fold-free stage stops once its last capped steps gained less than
+// a quarter of the threshold each on average; not on fewer capped steps, nor on faster gains.
+void test_slow_capped_tail()
+{
+  using Newton = I::Newton_solver<SP::Eigen_sparse_LDLT_traits, CGAL::Sequential_tag>;
+  const std::size_t window = Newton::capped_tail_window;
+  const double threshold = 1e-4;
+  auto tail = [&](double gain_per_iteration) {
+    std::vector<double> history{10.0};
+    for(std::size_t i = 0; i < window + 2; ++i)
+      history.push_back(history.back() - gain_per_iteration * threshold);
+    return history;
+  };
+  report("slow capped tail: stops when the capped steps gain 0.2 of the threshold each",
+         Newton::slow_capped_tail(tail(0.2), window, threshold));
+  report("slow capped tail: goes on when they gain 0.3 of it each", !Newton::slow_capped_tail(tail(0.3), window, threshold));
+  report("slow capped tail: goes on when fewer of the last steps were capped",
+         !Newton::slow_capped_tail(tail(0.2), window - 1, threshold));
+  report("slow capped tail: goes on with too short a history",
+         !Newton::slow_capped_tail(std::vector<double>(window, 10.0), window + 1, threshold));
+}
+
 } // namespace
 
 int main()
@@ -350,6 +372,7 @@ int main()
   test_mean_value_point();
   test_mobius_boost();
   test_floor_patch();
+  test_slow_capped_tail();
   std::cout << passed << " passed, " << failed << " failed" << std::endl;
   return failed == 0 ? 0 : 1;
 }

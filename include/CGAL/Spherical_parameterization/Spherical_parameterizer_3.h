@@ -307,10 +307,17 @@ private:
     // and on the whole map only if that was not enough. Not on the coarser levels: there the
     // continuation's cushion is what keeps the next levels clear of the floor (bunny00, floor
     // stage alone on every level: Dirichlet 35 -> 63 iterations, Tutte 38 -> 42).
+    // The last stage, on the floor; on the input its slow capped tail may stop it.
+    auto floor_stage = [&] {
+      run.options.stop_slow_capped_tail = is_input;
+      const bool done = minimize(energy_, stage, true, run, level, x, visitor);
+      run.options.stop_slow_capped_tail = false;
+      return done;
+    };
     if(is_input && fold_free_minimum && level.solver->is_above_floor(x, near_floor * floor, internal::degenerate_determinant)) {
       if(lift_locally(run, x, visitor) || run.interrupted)
         return !run.interrupted;
-      return minimize(energy_, stage, true, run, level, x, visitor);
+      return floor_stage();
     }
     x = std::move(fold_free);
     // Continuation on the floor: first 1000 times higher, to a loose tolerance, so that the
@@ -323,7 +330,7 @@ private:
     const bool first = minimize(energy_, stage, true, run, level, x, visitor);
     run.options.fold_floor = saved.fold_floor;
     run.options.tolerance = saved.tolerance;
-    return first && minimize(energy_, stage, true, run, level, x, visitor);
+    return first && floor_stage();
   }
 
   // The floor stage on the neighbourhood of the input's faces under the floor, the rest of
