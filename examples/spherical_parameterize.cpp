@@ -3,7 +3,7 @@
 //   spherical_parameterize [INPUT [OUTPUT]] [--energy NAME] [--weights A [B]]
 //                          [--pipeline robust|paper] [--init central|FILE]
 //                          [--max-iterations N] [--time-limit SECONDS] [--no-correction]
-//                          [--triangulate] [--quiet]
+//                          [--triangulate] [--orient] [--quiet]
 //                          [--remesh-icosphere LEVEL OUT] [--geometry-image N OUT]
 //                          [--map-to OTHER_MESH OTHER_SPHERE OUT [--landmarks FILE]]
 //                          [--texture equirectangular|octahedral OUT.obj]
@@ -65,6 +65,7 @@ struct Options
   double time_limit = 0;
   bool correction = true;
   bool triangulate = false;
+  bool orient = false;
   bool quiet = false;
 
   // Uses of the map, each off unless its output path is set.
@@ -80,10 +81,14 @@ struct Options
 const char* usage =
   "usage: spherical_parameterize [INPUT [OUTPUT]] [--energy tutte|dirichlet|area|stretch|mips|combined]\n"
   "         [--weights A [B]] [--pipeline robust|paper] [--init central|FILE] [--max-iterations N]\n"
-  "         [--time-limit SECONDS] [--no-correction] [--triangulate] [--quiet]\n"
+  "         [--time-limit SECONDS] [--no-correction] [--triangulate] [--orient] [--quiet]\n"
   "         [--remesh-icosphere LEVEL OUT] [--geometry-image N OUT]\n"
   "         [--map-to OTHER_MESH OTHER_SPHERE OUT [--landmarks FILE]]\n"
   "         [--texture equirectangular|octahedral OUT.obj]\n"
+  "  --triangulate                  split the input's polygons into triangles\n"
+  "  --orient                       read a soup whose faces are not consistently oriented (CGAL's\n"
+  "                                 orient_polygon_soup); OUTPUT then has the reoriented faces, and\n"
+  "                                 the vertices it had to duplicate at non-manifold points last\n"
   "Uses of the map (written only if the map is valid):\n"
   "  --remesh-icosphere LEVEL OUT   the surface resampled on a geodesic icosphere of subdivision LEVEL\n"
   "                                 (0 to 9: 20 * 4^LEVEL faces); OUT .off or .obj\n"
@@ -149,6 +154,7 @@ Options parse_options(int argc, char** argv)
     else if(arg == "--time-limit") o.time_limit = parse_number(arg, next());
     else if(arg == "--no-correction") o.correction = false;
     else if(arg == "--triangulate") o.triangulate = true;
+    else if(arg == "--orient") o.orient = true;
     else if(arg == "--quiet") o.quiet = true;
     else if(arg == "--remesh-icosphere") {
       o.icosphere_level = parse_integer(arg, next(), 0, 9);
@@ -186,8 +192,9 @@ Options parse_options(int argc, char** argv)
   return o;
 }
 
-// Reads a polygon mesh; a file that reads as a polygon soup but not as a mesh is named as such.
-Mesh read_mesh(const std::string& path)
+// Reads a polygon mesh; a file that reads as a polygon soup but not as a mesh is named as such,
+// or, with `orient`, made into one by CGAL's orientation of soups.
+Mesh read_mesh(const std::string& path, bool orient = false)
 {
   if(!std::filesystem::exists(path)) fail("cannot open " + path + ": no such file");
   const std::string ext = std::filesystem::path(path).extension().string();
@@ -205,10 +212,23 @@ Mesh read_mesh(const std::string& path)
     // CGAL's readers throw (bad_alloc, length_error) on absurd counts in a corrupted header.
     fail("cannot read " + path + ": not a valid mesh file (" + e.what() + ")");
   }
-  if(is_soup)
-    fail("cannot read " + path + " as a surface: its " + std::to_string(polygons.size()) +
-         " faces do not form an oriented 2-manifold (non-manifold vertices or edges, or inconsistent orientation)");
-  fail("cannot read " + path + ": not a valid mesh file");
+  if(!is_soup)
+    fail("cannot read " + path + ": not a valid mesh file");
+  const std::string not_a_surface = "cannot read " + path + " as a surface: its " + std::to_string(polygons.size()) +
+                                    " faces do not form an oriented 2-manifold (non-manifold vertices or edges, or "
+                                    "inconsistent orientation)";
+  if(!orient)
+    fail(not_a_surface + "; the option --orient can repair it");
+  const std::size_t read_points = points.size();
+  PMP::orient_polygon_soup(points, polygons);  // appends the points it duplicates
+  if(!PMP::is_polygon_soup_a_polygon_mesh(polygons))
+    fail(not_a_surface + ", even after --orient");
+  mesh.clear();  // the failed read may have left part of the file in it
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  if(points.size() > read_points)
+    std::cerr << "spherical_parameterize: --orient duplicated " << points.size() - read_points
+              << " vertices of " << path << " at non-manifold points\n";
+  return mesh;
 }
 
 std::string quote_status(const SP::Result& r)
@@ -374,7 +394,7 @@ double landmark_misfit(const Sphere_map& a, const Sphere_map& b, const Landmarks
 
 void write_map_to_other(const Options& o, const Mesh& mesh, const Sphere_map& sphere)
 {
-  Mesh other = read_mesh(o.other_mesh);
+  Mesh other = read_mesh(o.other_mesh, o.orient);
   const Mesh other_points_on_sphere = read_mesh(o.other_sphere);
   if(other_points_on_sphere.number_of_vertices() != other.number_of_vertices() ||
      other_points_on_sphere.number_of_faces() != other.number_of_faces())
@@ -443,7 +463,7 @@ void use_the_map(const Options& o, const Mesh& mesh, const Sphere_map& sphere)
 int main(int argc, char** argv)
 {
   const Options o = parse_options(argc, argv);
-  Mesh mesh = read_mesh(o.input);
+  Mesh mesh = read_mesh(o.input, o.orient);
   if(o.triangulate && !CGAL::is_triangle_mesh(mesh))
     PMP::triangulate_faces(mesh);
 
