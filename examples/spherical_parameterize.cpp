@@ -27,6 +27,7 @@
 #include <CGAL/Spherical_parameterization/surface_map.h>
 #include <CGAL/Spherical_parameterization/texture_coordinates.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -192,6 +193,19 @@ Options parse_options(int argc, char** argv)
   return o;
 }
 
+// True if every polygon has at least three distinct vertices, all of them among the points:
+// what CGAL's orientation of soups takes for granted.
+bool is_indexed_soup(std::size_t point_count, const std::vector<std::vector<std::size_t>>& polygons)
+{
+  for(std::vector<std::size_t> polygon : polygons) {
+    std::sort(polygon.begin(), polygon.end());
+    if(polygon.size() < 3 || polygon.back() >= point_count ||
+       std::adjacent_find(polygon.begin(), polygon.end()) != polygon.end())
+      return false;
+  }
+  return true;
+}
+
 // Reads a polygon mesh; a file that reads as a polygon soup but not as a mesh is named as such,
 // or, with `orient`, made into one by CGAL's orientation of soups.
 Mesh read_mesh(const std::string& path, bool orient = false)
@@ -214,15 +228,16 @@ Mesh read_mesh(const std::string& path, bool orient = false)
   }
   if(!is_soup)
     fail("cannot read " + path + ": not a valid mesh file");
-  const std::string not_a_surface = "cannot read " + path + " as a surface: its " + std::to_string(polygons.size()) +
-                                    " faces do not form an oriented 2-manifold (non-manifold vertices or edges, or "
-                                    "inconsistent orientation)";
+  const std::string not_a_surface = "cannot read " + path + " as a surface: its " + std::to_string(polygons.size()) + " faces ";
+  if(!is_indexed_soup(points.size(), polygons))
+    fail(not_a_surface + "include one with fewer than three distinct vertices or a vertex index out of range");
+  const std::string why = "do not form an oriented 2-manifold (non-manifold vertices or edges, or inconsistent orientation)";
   if(!orient)
-    fail(not_a_surface + "; the option --orient can repair it");
+    fail(not_a_surface + why + "; the option --orient can repair it");
   const std::size_t read_points = points.size();
   PMP::orient_polygon_soup(points, polygons);  // appends the points it duplicates
   if(!PMP::is_polygon_soup_a_polygon_mesh(polygons))
-    fail(not_a_surface + ", even after --orient");
+    fail(not_a_surface + why + ", even after --orient");
   mesh.clear();  // the failed read may have left part of the file in it
   PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
   if(points.size() > read_points)
