@@ -301,9 +301,8 @@ public:
   /// `history` holds the energy after each iteration, the last one included.
   static bool slow_capped_tail(const std::vector<double>& history, std::size_t capped_steps, double threshold)
   {
-    if(capped_steps < capped_tail_window || history.size() <= capped_tail_window)
-      return false;
-    return history[history.size() - 1 - capped_tail_window] - history.back() <= 0.25 * capped_tail_window * threshold;
+    return capped_steps >= capped_tail_window &&
+           recent_gain(history, capped_tail_window) <= 0.25 * capped_tail_window * threshold;
   }
   static constexpr std::size_t capped_tail_window = 5;
 
@@ -351,10 +350,15 @@ private:
   // where the map no longer changes visibly.
   static bool stalled(const std::vector<double>& history, double threshold)
   {
-    constexpr std::size_t window = 10;
+    return recent_gain(history, 10) <= threshold;
+  }
+
+  // The energy gained over the last `window` iterations; infinite if there were fewer.
+  static double recent_gain(const std::vector<double>& history, std::size_t window)
+  {
     if(history.size() <= window)
-      return false;
-    return history[history.size() - 1 - window] - history.back() <= threshold;
+      return std::numeric_limits<double>::infinity();
+    return history[history.size() - 1 - window] - history.back();
   }
 
   template <class Number>
