@@ -2,10 +2,12 @@
 # Builds the benchmark in Release and runs it over CGAL's sample meshes; writes
 # benchmark/results/latest.csv and latest.json, then the plots (see README.md).
 #
-# usage: benchmark/run_benchmark.sh [--quick] [--full] [--energies LIST] [--pipeline robust|paper]
-#                                   [--data DIR] [--build-dir DIR]
+# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--energies LIST]
+#                                   [--pipeline robust|paper] [--data DIR] [--build-dir DIR]
 #   --quick          only the meshes under 15k faces, 1 repeat each
 #   --full           also bunny00 Loop-subdivided once (300k faces) and twice (1.2M faces)
+#   --large          instead, 15 other meshes Loop-subdivided to 90k-260k faces, 1 repeat,
+#                    Combined unless --energies; results in benchmark/results/large/
 #   --energies LIST  comma-separated, default tutte,dirichlet,combined
 #   --pipeline P     robust (default) or paper
 #   --data DIR       a folder holding the .off meshes; default: CGAL's data tarball
@@ -19,7 +21,8 @@ root="$(cd "$here/.." && pwd)"
 
 quick=0
 full=0
-energies="tutte,dirichlet,combined"
+large=0
+energies=""
 pipeline="robust"
 data=""
 build_dir="build"
@@ -27,17 +30,30 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
     --full) full=1 ;;
+    --large) large=1 ;;
     --energies) energies="$2"; shift ;;
     --pipeline) pipeline="$2"; shift ;;
     --data) data="$2"; shift ;;
     --build-dir) build_dir="$2"; shift ;;
-    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
     *) echo "unknown option $1" >&2; exit 1 ;;
   esac
   shift
 done
 
 corpus=(hand blobby triceratops cow retinal homer bull camel bear fandisk_large man diplodocus armadillo bunny00)
+# The size of the meshes the held-out runs use (100k to 270k faces), from meshes whose
+# own size the corpus covers: smooth ones, and the protrusions (legs, horns, tails) that are
+# the slow case. Each entry is MESH@loopN, N Loop subdivisions.
+large_corpus=(cow@loop2 triceratops@loop2 bear@loop1 retinal@loop2 dino@loop2 fandisk_large@loop1 man@loop1
+              hand@loop3 homer@loop2 diplodocus@loop1 bull@loop2 ellipe0.003@loop3 fandisk@loop2
+              armadillo@loop1 blobby@loop3)
+if [ "$large" = 1 ]; then
+  corpus=()
+  for entry in "${large_corpus[@]}"; do corpus+=("${entry%@*}"); done
+  : "${energies:=combined}"
+fi
+: "${energies:=tutte,dirichlet,combined}"
 
 # The meshes.
 tmp=""
@@ -76,7 +92,12 @@ for m in "${corpus[@]}"; do
   fi
   meshes+=("$file")
 done
-if [ "$full" = 1 ] && [ "$quick" = 0 ] && [ -f "$data/bunny00.off" ]; then
+if [ "$large" = 1 ]; then
+  meshes=()
+  for entry in "${large_corpus[@]}"; do
+    [ -f "$data/${entry%@*}.off" ] && meshes+=("$data/${entry%@*}.off@${entry#*@}")
+  done
+elif [ "$full" = 1 ] && [ "$quick" = 0 ] && [ -f "$data/bunny00.off" ]; then
   meshes+=("$data/bunny00.off@loop1" "$data/bunny00.off@loop2")
 fi
 if [ ${#meshes[@]} -eq 0 ]; then
@@ -96,9 +117,10 @@ binary="$build_dir/bin/benchmark"
 
 # Run.
 results="$here/results"
+if [ "$large" = 1 ]; then results="$results/large"; fi
 mkdir -p "$results"
 args=(--energies "$energies" --pipeline "$pipeline" --csv "$results/latest.csv" --json "$results/latest.json")
-if [ "$quick" = 1 ]; then args+=(--repeats 1); fi
+if [ "$quick" = 1 ] || [ "$large" = 1 ]; then args+=(--repeats 1); fi
 status=0
 "$binary" "${args[@]}" "${meshes[@]}" | tee "$results/latest.txt" || status=$?
 
