@@ -44,13 +44,12 @@ done
 corpus=(hand blobby triceratops cow retinal homer bull camel bear fandisk_large man diplodocus armadillo bunny00)
 # The size of the meshes the issue's held-out runs use (100k to 270k faces), from meshes whose
 # own size the corpus covers: smooth ones, and the protrusions (legs, horns, tails) that are
-# the slow case. Each entry is MESH@loopN, N Loop subdivisions.
+# the slow case. MESH@loopN: N Loop subdivisions (done by the benchmark program).
 large_corpus=(cow@loop2 triceratops@loop2 bear@loop1 retinal@loop2 dino@loop2 fandisk_large@loop1 man@loop1
               hand@loop3 homer@loop2 diplodocus@loop1 bull@loop2 ellipe0.003@loop3 fandisk@loop2
               armadillo@loop1 blobby@loop3)
 if [ "$large" = 1 ]; then
-  corpus=()
-  for entry in "${large_corpus[@]}"; do corpus+=("${entry%@*}"); done
+  corpus=("${large_corpus[@]}")
   : "${energies:=combined}"
 fi
 : "${energies:=tutte,dirichlet,combined}"
@@ -67,7 +66,7 @@ if [ -z "$data" ]; then
   fi
   tmp="$(mktemp -d)"
   members=()
-  for m in "${corpus[@]}"; do members+=("data/meshes/$m.off"); done
+  for m in "${corpus[@]}"; do members+=("data/meshes/${m%@*}.off"); done
   tar -xzf "$tarball" -C "$tmp" "${members[@]}"
   data="$tmp/data/meshes"
 fi
@@ -82,22 +81,18 @@ off_faces() {
 
 meshes=()
 for m in "${corpus[@]}"; do
-  file="$data/$m.off"
+  file="$data/${m%@*}.off"
+  case "$m" in *@*) subdivision="@${m#*@}" ;; *) subdivision="" ;; esac
   if [ ! -f "$file" ]; then
     echo "missing $file, skipped" >&2
     continue
   fi
-  if [ "$quick" = 1 ] && [ "$(off_faces "$file")" -ge 15000 ]; then
+  if [ "$quick" = 1 ] && [ "$large" = 0 ] && [ "$(off_faces "$file")" -ge 15000 ]; then
     continue
   fi
-  meshes+=("$file")
+  meshes+=("$file$subdivision")
 done
-if [ "$large" = 1 ]; then
-  meshes=()
-  for entry in "${large_corpus[@]}"; do
-    [ -f "$data/${entry%@*}.off" ] && meshes+=("$data/${entry%@*}.off@${entry#*@}")
-  done
-elif [ "$full" = 1 ] && [ "$quick" = 0 ] && [ -f "$data/bunny00.off" ]; then
+if [ "$full" = 1 ] && [ "$quick" = 0 ] && [ "$large" = 0 ] && [ -f "$data/bunny00.off" ]; then
   meshes+=("$data/bunny00.off@loop1" "$data/bunny00.off@loop2")
 fi
 if [ ${#meshes[@]} -eq 0 ]; then

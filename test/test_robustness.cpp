@@ -463,9 +463,9 @@ void test_irregular_shapes()
   test_irregular(transformed(base, [](const Point& p) { return Point(p.x(), p.y(), 0.05 * p.z()); }),
                  "flattened to 0.05 along z");
   const Mesh uneven = jittered(base, 0.45);
+  const double before = smallest_angle_degrees(base), after = smallest_angle_degrees(uneven);
   report("[bumpy ellipsoid jittered]: skinny triangles (smallest angle under 5 degrees, over 15 before)",
-         smallest_angle_degrees(uneven) < 5 && smallest_angle_degrees(base) > 15,
-         std::to_string(smallest_angle_degrees(base)) + " -> " + std::to_string(smallest_angle_degrees(uneven)));
+         after < 5 && before > 15, std::to_string(before) + " -> " + std::to_string(after));
   test_irregular(uneven, "jittered by up to 45% of the edges");
   std::cerr << "time irregular shapes: " << seconds_since(start) << " s" << std::endl;
 }
