@@ -211,6 +211,13 @@ std::string describe(const SP::Result& r)
   return s + ", " + std::to_string(r.iterations) + " iterations [" + r.stages + "], valid " + std::to_string(r.valid);
 }
 
+/// What `measure_distortion()` found, for the messages that compare it with `Result::valid`.
+std::string describe(const SP::Distortion_report& d)
+{
+  return "measured valid " + std::to_string(d.is_valid()) + ", " + std::to_string(d.flipped) + " flipped, " +
+         std::to_string(d.degenerate) + " degenerate, degree " + str(d.degree);
+}
+
 /// The codes detected before any solve, which leave the output map untouched.
 bool is_input_error(SP::Error_code c)
 {
@@ -297,8 +304,7 @@ void test_cancellation(Mesh mesh, const std::string& mesh_name, SP::Pipeline pip
   report(name + ": the map is written, every point finite", max_norm_error(mesh, map) < inf);
   const SP::Distortion_report d = SP::measure_distortion(mesh, map);
   report(name + ": Result.valid (" + std::to_string(r.valid) + ") matches measure_distortion", r.valid == d.is_valid(),
-         "measured valid " + std::to_string(d.is_valid()) + ", " + std::to_string(d.flipped) + " flipped, " +
-           std::to_string(d.degenerate) + " degenerate, degree " + str(d.degree));
+         describe(d));
 }
 
 void test_time_limit(Mesh mesh, const std::string& mesh_name)
@@ -386,8 +392,7 @@ void test_extreme(const Mesh& base, const std::string& what, const std::function
   report(name + ": valid map (status OK or NOT_CONVERGED, measure_distortion agrees)",
                   (r.status == SP::Error_code::OK || r.status == SP::Error_code::NOT_CONVERGED) && r.valid &&
                     d.is_valid(),
-                  describe(r) + "; measured valid " + std::to_string(d.is_valid()) + ", " +
-                    std::to_string(d.flipped) + " flipped, " + std::to_string(d.degenerate) + " degenerate");
+                  describe(r) + "; " + describe(d));
 }
 
 void test_extremes()
@@ -448,8 +453,7 @@ void test_irregular(Mesh mesh, const std::string& what)
   const SP::Distortion_report d = SP::measure_distortion(mesh, out);
   report(name + ": valid map (status OK, measure_distortion agrees)",
          r.status == SP::Error_code::OK && r.valid && d.is_valid(),
-         describe(r) + "; measured valid " + std::to_string(d.is_valid()) + ", " + std::to_string(d.flipped) +
-           " flipped, " + std::to_string(d.degenerate) + " degenerate");
+         describe(r) + "; " + describe(d));
 }
 
 /// Measured at 75k to 300k faces with the command line tool (doc/NOTES.md, session 22):
