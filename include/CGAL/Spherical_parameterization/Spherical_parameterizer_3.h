@@ -21,6 +21,7 @@
 #include <CGAL/Spherical_parameterization/internal/check_input.h>
 #include <CGAL/Spherical_parameterization/internal/indexed_triangles.h>
 #include <CGAL/Spherical_parameterization/internal/initialization.h>
+#include <CGAL/Spherical_parameterization/internal/locality_order.h>
 #include <CGAL/Spherical_parameterization/internal/map_validity.h>
 #include <CGAL/Spherical_parameterization/internal/parallel_for.h>
 
@@ -113,6 +114,8 @@ public:
                           CGAL::to_double(traits_.compute_y_3_object()(p)),
                           CGAL::to_double(traits_.compute_z_3_object()(p)));
     }
+    // Neighbours near each other in memory, and a map that does not depend on the input's order.
+    internal::order_by_locality(vertices_, points, mesh.triangles);
     input_.soup = internal::make_triangle_soup(std::move(points), std::move(mesh.triangles));
     return Error_code::OK;
   }
