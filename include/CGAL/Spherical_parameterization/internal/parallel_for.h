@@ -16,7 +16,6 @@
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 #endif
 
 namespace CGAL {
@@ -42,21 +41,6 @@ void parallel_for(std::size_t n, const Fn& fn)
 #endif
   for(std::size_t i = 0; i < n; ++i)
     fn(i);
-}
-
-/// Calls `first()` and `second()`, at the same time with `CGAL::Parallel_tag` and TBB. They
-/// must not write to the same data.
-template <class ConcurrencyTag, class First, class Second>
-void parallel_invoke(const First& first, const Second& second)
-{
-#ifdef CGAL_LINKED_WITH_TBB
-  if constexpr(std::is_same<ConcurrencyTag, CGAL::Parallel_tag>::value) {
-    tbb::parallel_invoke(first, second);
-    return;
-  }
-#endif
-  first();
-  second();
 }
 
 /// Runs a task from construction to `wait()` on a thread of its own with `CGAL::Parallel_tag`
