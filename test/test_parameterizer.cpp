@@ -870,7 +870,20 @@ void test_cholmod_traits()
 /// The guards around CHOLMOD's calls (internal/solver_threads.h): inside, OpenMP regions
 /// are inactive (max-active-levels 0) and OpenBLAS has one thread less (at least one); after,
 /// both settings are back. Skipped for a library the process does not have.
-void test_solver_threads()
+// OpenBLAS's thread count, or -1 if OpenBLAS is not the BLAS of the process.
+int openblas_threads()
+{
+#if defined(__unix__)
+  const auto get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  return get ? get() : -1;
+#else
+  return -1;
+#endif
+}
+
+// `blas_threads_at_start`: before the solves of the other tests, which must have left it as
+// it was (the package changes it around its factorizations, from one thread at a time).
+void test_solver_threads(int blas_threads_at_start)
 {
 #if defined(__unix__)
   using Get = int (*)();
@@ -895,6 +908,9 @@ void test_solver_threads()
   const auto get_blas = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
   const auto set_blas = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
   if(get_blas && set_blas) {
+    report("[solver threads] the solves left OpenBLAS's thread count as it was: " + std::to_string(blas_threads_at_start) +
+             " -> " + std::to_string(get_blas()),
+           get_blas() == blas_threads_at_start);
     const int before = get_blas();
     int inside = -1;
     {
@@ -972,6 +988,7 @@ int main(int argc, char** argv)
   meshes_dir = argc > 1 ? argv[1] : "/tmp/cgaldata/data/meshes";
   data_dir = argc > 2 ? argv[2] : "data";
   const auto start = std::chrono::steady_clock::now();
+  const int blas_threads_at_start = openblas_threads();
 
   test_icosphere();
   test_mesh_types();
@@ -1006,7 +1023,7 @@ int main(int argc, char** argv)
   // Last: its random matrix draws from `rng`, which would otherwise shift the other tests' draws.
   test_vertex_ordered_cholmod();
   test_cholmod_traits();
-  test_solver_threads();
+  test_solver_threads(blas_threads_at_start);
   test_huge_pages();
   test_background_task();
 

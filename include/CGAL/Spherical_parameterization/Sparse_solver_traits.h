@@ -97,9 +97,13 @@ public:
     relax_supernodes(c);
   }
 
+  // The symbolic analysis calls no BLAS, so it holds no `Blas_thread_slack` (a setting of
+  // the whole process): the input's analysis runs on another thread while the coarser
+  // levels factor theirs.
   void analyze_pattern(const Matrix& m)
   {
-    const Call_settings settings;
+    const internal::Openmp_serial openmp_serial;
+    const internal::Cholmod_huge_pages huge_pages;
     if(m.rows() < 2 * vertex_ordering_from || !solver_.analyze_pattern_by_vertices(m))
       solver_.analyzePattern(m);
   }

@@ -64,8 +64,9 @@ private:
 /// it is set to (one thread on two cores), leaving a core of slack. Any other BLAS is left
 /// alone. Define `CGAL_SPHERICAL_PARAMETERIZATION_KEEP_BLAS_THREADS` to turn this off.
 /// The setting is the process's: two of these alive on two threads at once could restore
-/// each other's values, so the package calls CHOLMOD's BLAS from one thread at a time (the
-/// factor allocated on another thread, `Cholmod_traits::allocate_factor()`, needs no BLAS).
+/// each other's values, so the package calls CHOLMOD's BLAS from one thread at a time (what
+/// runs on another thread, the input's symbolic analysis and `Cholmod_traits::allocate_factor()`,
+/// needs no BLAS and holds none of these).
 ///
 /// Why: OpenBLAS's threads spin while they wait. When another process holds a core, a
 /// CHOLMOD factorization with two BLAS threads on two cores slows down badly: bunny00 after
