@@ -4,12 +4,14 @@
 // The parts of the robust pipeline's coarse-to-fine solve, each against the property it is
 // there for: the progressive mesh (a closed genus-0 manifold at every level, undone exactly,
 // area shares kept), the fans of the vertex splits, the placement of a split vertex in the
-// kernel of its fan, the mean value point, the Moebius boost, and the floor patch.
+// kernel of its fan, the mean value point, the Moebius boost, the floor patch, and the
+// two-grid cycle of the input's first step.
 // Meshes built in code only (the `fast` CTest label, also run under the sanitizers).
 // Usage: test_coarse_to_fine [ignored arguments]
 
 #include <CGAL/Spherical_parameterization/Dirichlet_energy.h>
 #include <CGAL/Spherical_parameterization/Sparse_solver_traits.h>
+#include <CGAL/Spherical_parameterization/internal/Coarse_to_fine.h>
 #include <CGAL/Spherical_parameterization/internal/Floor_patch.h>
 #include <CGAL/Spherical_parameterization/internal/Newton_solver.h>
 #include <CGAL/Spherical_parameterization/internal/Progressive_mesh.h>
@@ -340,6 +342,77 @@ void test_floor_patch()
          "lowest share of the floor " + str(lowest_before / floor) + " -> " + str(lowest_after / floor));
 }
 
+// The two-grid cycle of the input's first step (`Coarse_to_fine::coarse_correction()`): its
+// restriction is the transpose of its prolongation, and after the splits from a converged
+// level its step lowers the energy below block Jacobi's alone, the smooth error included.
+void test_two_grid_cycle()
+{
+  using Newton = I::Newton_solver<SP::Eigen_sparse_LDLT_traits, CGAL::Sequential_tag>;
+  SP::Icosphere sphere = SP::make_icosphere(4);
+  for(auto& p : sphere.points) p *= 1 + 0.05 * uniform(-1, 1);
+  const I::Triangle_soup soup = I::make_triangle_soup(sphere.points, sphere.faces);
+  const I::Progressive_mesh pm(soup, 200);
+  I::Coarse_to_fine<Newton> levels(soup, pm, 3);
+  const SP::Dirichlet_energy dirichlet;
+  auto no_visitor = [](const SP::Progress&) { return true; };
+  I::Newton_options options;
+  options.tolerance = 1e-9;
+  I::Points x(soup.number_of_vertices(), Eigen::Vector3d::Zero()), level_x;
+  // Every level solved from the splits of the last; the coarsest from its points' central
+  // projection (the bumps are radial: a map).
+  I::Level<Newton>* level = levels.level();
+  level_x = level->soup.points;
+  for(auto& p : level_x) p.normalize();
+  bool converged = true;
+  for(;;) {
+    const I::Spherical_energy<SP::Dirichlet_energy> energy(level->soup, dirichlet);
+    converged = converged && level->solver->minimize(energy, level_x, options, no_visitor).stop == I::Newton_stop::CONVERGED;
+    level->scatter(level_x, x);
+    if(!levels.refine(x) || !(level = levels.level()))
+      break;
+    level->gather(x, level_x);
+  }
+  report("two-grid cycle: every level before the input converged", converged);
+
+  // The restriction, as the transpose of the prolongation: <P a, b> = <a, P^T b>.
+  const std::size_t n = soup.number_of_vertices();
+  std::vector<Eigen::Vector3d> a(n), b(n);
+  for(std::size_t v = 0; v < n; ++v) {
+    a[v] = Eigen::Vector3d(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+    b[v] = Eigen::Vector3d(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+  }
+  std::vector<Eigen::Vector3d> prolongated = a, restricted = b;
+  levels.split_rings().spread(prolongated);
+  levels.split_rings().transpose_spread(restricted);
+  double left = 0, right = 0;
+  for(std::size_t v = 0; v < n; ++v) {
+    left += prolongated[v].dot(b[v]);
+    right += a[v].dot(restricted[v]);
+  }
+  report("two-grid cycle: the restriction is the transpose of the prolongation", std::abs(left - right) <= 1e-12 * std::abs(left),
+         str(left, 15) + " against " + str(right, 15));
+
+  // One smoothing step from the splits, with and without the coarse correction.
+  const I::Spherical_energy<SP::Dirichlet_energy> energy(soup, dirichlet);
+  const I::Coarse_correction coarse_correction = [&levels](const auto& map, const auto& gradient, auto& step) {
+    return levels.coarse_correction(map, gradient, step);
+  };
+  options.max_iterations = 1;
+  options.smoothing_iterations = 1;
+  Newton input(soup);
+  I::Points jacobi = x, two_grid = x;
+  input.minimize(energy, jacobi, options, no_visitor);
+  options.coarse_correction = &coarse_correction;
+  input.minimize(energy, two_grid, options, no_visitor);
+  const double start = energy.value(x), after_jacobi = energy.value(jacobi), after_two_grid = energy.value(two_grid);
+  report("two-grid cycle: its step lowers the energy further than block Jacobi's",
+         after_two_grid < after_jacobi && after_jacobi < start,
+         str(start, 8) + " -> " + str(after_jacobi, 8) + " (block Jacobi), " + str(after_two_grid, 8) + " (two-grid)");
+  std::vector<Eigen::Vector3d> unused;
+  report("two-grid cycle: the last level is freed after its one use",
+         !levels.coarse_correction(x, std::vector<Eigen::Vector3d>(n, Eigen::Vector3d::Zero()), unused));
+}
+
 // The slow capped tail: a fold-free stage stops once its last capped steps gained less than
 // a quarter of the threshold each on average; not on fewer capped steps, nor on faster gains.
 void test_slow_capped_tail()
@@ -372,6 +445,7 @@ int main()
   test_mean_value_point();
   test_mobius_boost();
   test_floor_patch();
+  test_two_grid_cycle();
   test_slow_capped_tail();
   std::cout << passed << " passed, " << failed << " failed" << std::endl;
   return failed == 0 ? 0 : 1;

@@ -295,6 +295,7 @@ private:
     run.options.smoothing_iterations = smoothing;
     const bool uninterrupted = minimize(energy_, stage, false, run, level, x, visitor);
     run.options.smoothing_iterations = 0;
+    run.options.coarse_correction = nullptr;
     run.options.fold_free_iterate = nullptr;
     const bool folded = level.has_fold(x);
     const bool fold_free_minimum = !folded && last_level_stop_ != internal::Newton_stop::FOLDED;
@@ -437,8 +438,11 @@ private:
       Level& current = level ? *level : input_;
       internal::Points& y = level ? level_x : x;
       run.stages += std::string(" | ") + (level ? "" : "input ") + std::to_string(current.number_of_vertices()) + "v:";
+      const internal::Coarse_correction coarse_correction = [&levels](const auto& map, const auto& gradient, auto& step) {
+        return levels.coarse_correction(map, gradient, step);
+      };
       uninterrupted = current.has_fold(y) ? robust_stages(run, current, y, visitor)
-                                          : minimize_level(run, current, y, visitor, !level);
+                                          : minimize_level(run, current, y, visitor, level ? nullptr : &coarse_correction);
       if(level)
         level->scatter(y, x);
     }
@@ -447,18 +451,35 @@ private:
     return true;
   }
 
-  // An intermediate level: the user's energy to a loose tolerance, a few iterations.
+  // A level after its vertex splits: an intermediate one to a loose tolerance, a few
+  // iterations; the input (`input_correction` given) to the tolerance.
   template <class Visitor>
-  bool minimize_level(Run& run, Level& level, internal::Points& x, Visitor& visitor, bool is_input)
+  bool minimize_level(Run& run, Level& level, internal::Points& x, Visitor& visitor,
+                      const internal::Coarse_correction* input_correction)
   {
     // One block Jacobi step after the splits halved the Newton iterations of bunny00 after
     // one subdivision (7 -> 3): most of the error a split leaves is local.
-    if(is_input) {
+    if(input_correction) {
       run.options.predict_convergence = true;
       run.options.leave_under_floor = true;
+      // On a large input the smooth error matters too. The smooth modes' curvature is
+      // about 7 / n of the Hessian's mean diagonal (a Laplacian's lowest eigenvalues), so
+      // the default first shift, 1e-4, damps them from some 70k vertices on, and block
+      // Jacobi does not see them. There the block Jacobi step is a two-grid cycle with the
+      // last level's factorization, and the first shift a fifth of that curvature
+      // (bunny00 after one subdivision, 151k vertices, Combined: the first Newton decrement
+      // 1.34 -> 0.45, 3 Newton iterations -> 2, 4.9 -> 4.0 s). On smaller inputs it
+      // changed paths for no gain (the corpus' 14 meshes up to 38k vertices, 42 runs,
+      // first shift 1e-5: iterations 4037 -> 4139, time +8%).
+      const std::size_t n = level.number_of_vertices();
+      if(n > two_grid_vertices) {
+        run.options.coarse_correction = input_correction;
+        run.options.first_shift = 1.5 / double(n);
+      }
       const bool uninterrupted = minimize_fold_free(run, level, x, visitor, "target", 1);
       run.options.predict_convergence = false;
       run.options.leave_under_floor = false;
+      run.options.first_shift = internal::Newton_options().first_shift;
       return uninterrupted;
     }
     const internal::Newton_options saved = run.options;
@@ -582,6 +603,7 @@ private:
   static constexpr double level_ratio = 3;
   static constexpr std::size_t level_iterations = 100;
   static constexpr double level_tolerance = 1e-5;
+  static constexpr std::size_t two_grid_vertices = 50000;  // see minimize_level()
   // A fold-free minimum whose faces are all above this share of the fold floor (and above
   // the degeneracy threshold) is "near the floor": the floor stage alone lifts its faces.
   // The continuation from 1000x the floor is for degenerate minima, faces squeezed to

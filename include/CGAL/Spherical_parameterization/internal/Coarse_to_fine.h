@@ -9,6 +9,8 @@
 #include <CGAL/Spherical_parameterization/internal/kernel_placement.h>
 #include <CGAL/Spherical_parameterization/internal/map_validity.h>
 
+#include <Eigen/Cholesky>
+
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -45,6 +47,82 @@ struct Level
   }
 };
 
+/// The rings of a sequence of vertex splits, in their order: the linear prolongation that
+/// moves each split vertex with the mean of its ring (`spread()`), and its transpose.
+class Split_rings
+{
+public:
+  void clear()
+  {
+    vertices_.clear();
+    ring_start_.assign(1, 0);
+    ring_.clear();
+  }
+
+  void add(int vertex, const Fan& fan)
+  {
+    vertices_.push_back(vertex);
+    for(const auto& [p, q] : fan)  // each ring vertex is the p of one face of the fan
+      ring_.push_back(p);
+    ring_start_.push_back(int(ring_.size()));
+  }
+
+  /// Sets each split vertex's value to the mean of its ring's, the splits in their order.
+  void spread(std::vector<Eigen::Vector3d>& values) const
+  {
+    for(std::size_t s = 0; s < vertices_.size(); ++s) {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for(int k = ring_start_[s]; k < ring_start_[s + 1]; ++k)
+        sum += values[ring_[k]];
+      values[vertices_[s]] = sum / double(ring_start_[s + 1] - ring_start_[s]);
+    }
+  }
+
+  /// The transpose of `spread()`: each split vertex's value shared out to its ring, the
+  /// splits in reverse order (and zeroed: `spread()` ignores it).
+  void transpose_spread(std::vector<Eigen::Vector3d>& values) const
+  {
+    for(std::size_t s = vertices_.size(); s-- > 0;) {
+      const Eigen::Vector3d share = values[vertices_[s]] / double(ring_start_[s + 1] - ring_start_[s]);
+      values[vertices_[s]].setZero();
+      for(int k = ring_start_[s]; k < ring_start_[s + 1]; ++k)
+        values[ring_[k]] += share;
+    }
+  }
+
+private:
+  std::vector<int> vertices_, ring_start_{0}, ring_;
+};
+
+/// Removes from the displacement `step` of the points `x` its least-squares part along the
+/// rotations (`w x p`) and the Moebius boosts (`b - (b . p) p`) of the whole map. Every
+/// energy is invariant under rotations and the conformal ones nearly so under boosts, so a
+/// converged level's factor is nearly singular along them and its solve blows up whatever
+/// part of the right-hand side lies there (a bumpy sphere's input, Dirichlet: a step of norm
+/// 6500); the Moebius boost step of every iteration handles them instead.
+inline void remove_global_modes(const Points& x, std::vector<Eigen::Vector3d>& step)
+{
+  using Fields = Eigen::Matrix<double, 3, 6>;  // the six fields at a point, as columns
+  auto fields = [](const Eigen::Vector3d& p) {
+    Fields f;
+    f.leftCols<3>() << 0, p.z(), -p.y(), -p.z(), 0, p.x(), p.y(), -p.x(), 0;  // e_k x p
+    f.rightCols<3>() = Eigen::Matrix3d::Identity() - p * p.transpose();
+    return f;
+  };
+  Eigen::Matrix<double, 6, 6> gram = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> moments = Eigen::Matrix<double, 6, 1>::Zero();
+  for(std::size_t i = 0; i < x.size(); ++i) {
+    const Fields f = fields(x[i]);
+    gram += f.transpose() * f;
+    moments += f.transpose() * step[i];
+  }
+  const Eigen::Matrix<double, 6, 1> c = gram.ldlt().solve(moments);
+  if(!c.allFinite())
+    return;
+  for(std::size_t i = 0; i < x.size(); ++i)
+    step[i] -= fields(x[i]) * c;
+}
+
 /// The levels of a coarse-to-fine solve, from the coarsest mesh of a progressive mesh of the
 /// input back to the input, their sizes growing by a constant ratio. Going to the next level
 /// makes the vertex splits in between: each new vertex goes to the mean value point of its
@@ -80,16 +158,65 @@ public:
   {
     if(next_size_ == sizes_.size())
       return false;
+    const bool to_input = next_size_ + 1 == sizes_.size();
+    split_rings_.clear();
     while(refinement_.number_of_vertices() < sizes_[next_size_]) {
       const Vertex_split& split = refinement_.split_next();
       refinement_.fan(split, fan_);
       x[split.removed] = place_in_kernel(x, fan_, mean_value_point(split.removed, input_->points, x, fan_));
       empty_kernels_ += !(fan_clearance(x[split.removed], x, fan_) > 0);
+      if(to_input)
+        split_rings_.add(split.removed, fan_);
     }
     ++next_size_;
+    // The last level before the input, with its last factorization, serves the input's
+    // coarse correction (`coarse_correction()`).
+    if(to_input && level_)
+      last_level_ = std::move(level_);
     level_.reset();
     return true;
   }
+
+  /// The coarse correction of the input from the last level before it (a two-grid cycle's
+  /// coarse step, see `Newton_options::coarse_correction`): the input's tangent `gradient`
+  /// restricted to that level, solved with that level's last factorization of its own
+  /// Hessian, and the level's step prolongated to the input. Restriction and prolongation
+  /// follow the vertex splits in between: each split vertex moves with the mean of its ring.
+  /// The level's step leaves out the rotations and Moebius boosts of the map `x` (see
+  /// `remove_global_modes()`). Used once: that level and its factor are freed after. False
+  /// if that level or its factorization is gone.
+  bool coarse_correction(const Points& x, const std::vector<Eigen::Vector3d>& gradient,
+                         std::vector<Eigen::Vector3d>& step)
+  {
+    const std::unique_ptr<Level<Newton>> used = std::move(last_level_);
+    if(!used || gradient.size() != input_->number_of_vertices() || x.size() != gradient.size())
+      return false;
+    const Level<Newton>& level = *used;
+    std::vector<Eigen::Vector3d> restricted = gradient;
+    split_rings_.transpose_spread(restricted);
+    const auto& bases = level.solver->bases();
+    const std::size_t n = level.to_input.size();
+    Eigen::VectorXd rhs(2 * n), level_step;
+    for(std::size_t i = 0; i < n; ++i)
+      rhs.template segment<2>(2 * i) = -bases[i].transpose() * restricted[level.to_input[i]];
+    if(!level.solver->solve_with_last_factor(rhs, level_step))
+      return false;
+    Points level_x(n);
+    std::vector<Eigen::Vector3d> displacement(n);
+    for(std::size_t i = 0; i < n; ++i) {
+      level_x[i] = x[level.to_input[i]];
+      displacement[i] = bases[i] * level_step.template segment<2>(2 * i);
+    }
+    remove_global_modes(level_x, displacement);
+    step.assign(gradient.size(), Eigen::Vector3d::Zero());
+    for(std::size_t i = 0; i < n; ++i)
+      step[level.to_input[i]] = displacement[i];
+    split_rings_.spread(step);
+    return true;
+  }
+
+  /// The rings of the splits from the last level to the input, once they are made.
+  const Split_rings& split_rings() const { return split_rings_; }
 
   /// The splits whose fan had no kernel: the map has a fold there, to untangle.
   std::size_t empty_kernels() const { return empty_kernels_; }
@@ -106,7 +233,8 @@ private:
   Refinement refinement_;
   std::vector<std::size_t> sizes_;  // of the levels after the coarsest, the input's last
   std::size_t next_size_ = 0;
-  std::unique_ptr<Level<Newton>> level_;
+  std::unique_ptr<Level<Newton>> level_, last_level_;
+  Split_rings split_rings_;  // of the splits from the last level to the input
   Fan fan_;
   std::size_t empty_kernels_ = 0;
 };

@@ -22,6 +22,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <type_traits>
 #include <utility>
@@ -42,6 +43,12 @@ template <class T>
 struct has_allocate_factor<T, std::void_t<decltype(std::declval<T&>().allocate_factor())>> : std::true_type
 {
 };
+
+/// A step of a map from a coarser level: given the map and the energy's gradient at every
+/// vertex (in its tangent plane), writes a displacement of every vertex that lowers the
+/// energy's smooth error, or returns false (see `Coarse_to_fine`).
+using Coarse_correction = std::function<bool(const Points& x, const std::vector<Eigen::Vector3d>& gradient,
+                                             std::vector<Eigen::Vector3d>& step)>;
 
 struct Newton_options
 {
@@ -69,6 +76,13 @@ struct Newton_options
   /// Iterations that solve only the 2x2 diagonal blocks of the Hessian (block Jacobi) before
   /// Newton: a cheap smoother of the local error a vertex split leaves.
   std::size_t smoothing_iterations = 0;
+  /// The exact Hessian's first shift in the solver's life, relative to its mean diagonal.
+  /// 1e-4 by default: starts are far from a minimum, and growing from the floor cost 7
+  /// failed factorizations on bear.
+  double first_shift = 1e-4;
+  /// With `smoothing_iterations`: the first smoothing step is a two-grid cycle, this coarse
+  /// correction of the map followed by block Jacobi (`Newton_solver::smoothing_direction()`).
+  const Coarse_correction* coarse_correction = nullptr;
   /// Before every Newton iteration, a Newton step on the three parameters of a Moebius
   /// boost of the whole map (`boost_step()`), the directions in which the energies of
   /// conformal type are nearly flat.
@@ -148,6 +162,8 @@ public:
     Newton_outcome out;
     with_barrier_ = options.keep_fold_free;
     floor_ = options.fold_floor;
+    first_shift_ = options.first_shift;
+    boost_search_ = options.boost_search;
     double e = total_energy(energy, x);
     out.energy = e;
     if(!std::isfinite(e)) {
@@ -171,19 +187,34 @@ public:
       compute_bases(x);
       Vector d;
       const bool smoothing = out.iterations < options.smoothing_iterations;
+      bool two_grid = false;
       if(smoothing)
-        smoothing_direction(energy, x, d);
+        two_grid = smoothing_direction(energy, x, out.iterations == 0 ? options.coarse_correction : nullptr, d);
       else if(!newton_direction(energy, x, options.projected_hessian, d)) { out.stop = Newton_stop::STALLED; break; }
 
-      const double decrement = -gradient_.dot(d);
+      double decrement = -gradient_.dot(d);
       double threshold = options.tolerance * std::abs(e + options.held_energy);
       if(!(decrement > threshold)) { out.stop = Newton_stop::CONVERGED; break; }
 
       double alpha = 1;
-      if(options.keep_fold_free)
-        alpha = std::min(1.0, 0.8 * largest_fold_free_step(*faces_, x, ambient_step(d)));
-      const bool capped = alpha < 1;
-      const double e_new = line_search(energy, x, d, e, decrement, alpha, trial);
+      auto fold_free_cap = [&] {
+        if(options.keep_fold_free)
+          alpha = std::min(1.0, 0.8 * largest_fold_free_step(*faces_, x, ambient_step(d)));
+      };
+      fold_free_cap();
+      bool capped = alpha < 1;
+      double e_new = line_search(energy, x, d, e, decrement, alpha, trial);
+      if(two_grid && alpha < 1) {
+        // The line search had to shorten the two-grid step: the last level's Hessian does
+        // not model the input's energy here (a level that ended on its fold barrier, as
+        // Dirichlet's squeezed ears do at 302k faces: a step of 1/32). Block Jacobi alone.
+        block_jacobi(-gradient_, d);
+        decrement = -gradient_.dot(d);
+        alpha = 1;
+        fold_free_cap();
+        capped = alpha < 1;
+        e_new = line_search(energy, x, d, e, decrement, alpha, trial);
+      }
       if(!(e_new < e)) {
         // No decrease along a direction of descent: precision is exhausted, or the
         // shift is too small for this non-convex stretch. Grow it once before giving up.
@@ -229,6 +260,10 @@ public:
       const bool quadratic_tail =
         model_held && (decrement <= 10 * threshold ||
                        (options.predict_convergence && predicted <= 1e-2 * threshold));
+      if(quadratic_tail && options.predict_convergence && boost_gain(energy, x, e) > threshold) {
+        out.energy = e;
+        continue;
+      }
       if(quadratic_tail || decrease <= threshold * 1e-2 || stalled(history, threshold) ||
          (options.stop_slow_capped_tail && slow_capped_tail(history, capped_steps, threshold))) {
         out.stop = Newton_stop::CONVERGED;
@@ -243,6 +278,19 @@ public:
     }
     return out;
   }
+
+  /// Solves `(H + mu I) d = rhs` with the last factorization of this solver's last
+  /// minimization, in the tangent charts of `bases()`; false if there is none.
+  bool solve_with_last_factor(const Vector& rhs, Vector& d) const
+  {
+    if(!factored_)
+      return false;
+    d = solver_.solve(rhs);
+    return d.allFinite();
+  }
+
+  /// The tangent basis of each vertex at the last iterate whose Hessian was assembled.
+  const std::vector<Basis>& bases() const { return bases_; }
 
   /// Allocates the buffers of the first assembly and the factor (the solver traits'
   /// `allocate_factor()`, if they have it) and writes them once. Fresh memory is slow on
@@ -333,6 +381,21 @@ private:
     if(exact_pause_ == 0)
       mu_exact_ = std::max(mu_exact_ / relax, mu_floor_);
     mu_projected_ = std::max(mu_projected_ / relax, mu_floor_);
+  }
+
+  // Before a stop on a predicted decrement: what one more Moebius boost step gains (the map
+  // and its energy `e` updated), 0 without boost steps. The decrement leaves the boosts out,
+  // and the conformal energies slide along them: Dirichlet at 302k faces stopped 2e-4 of
+  // its energy above its minimum on a decrement of 1.5e-3.
+  template <class Energy>
+  double boost_gain(const Spherical_energy<Energy>& energy, Points& x, double& e)
+  {
+    if(!boost_search_ || free_ != n_)
+      return 0;
+    const double before = e;
+    if(boost_step(x, [&](const Points& y) { return total_energy(energy, y); }, e))
+      e = total_energy(energy, x);
+    return before - e;
   }
 
   // Newton's decrement converges quadratically near a minimum, d_next = C d^2, with C
@@ -519,10 +582,47 @@ private:
   // the per-face projected Hessian, whose shift then only handles the curvature term.
   // Block Jacobi: each vertex's own 2x2 block of the exact Hessian, its eigenvalues replaced by
   // their absolute values (at least a small fraction of the block's size).
+  // With a coarse correction c, a two-grid cycle on the Newton system H d = -g that shares
+  // the one assembly: d = c + J^-1 (-g - H c), J the block diagonal. The coarse step
+  // lowers the smooth error that block Jacobi hardly sees (302k faces, Combined: the first
+  // Newton decrement 1.34 -> 0.45). Block Jacobi alone if the cycle's direction is not one
+  // of descent. True if the direction is the two-grid cycle's.
   template <class Energy>
-  void smoothing_direction(const Spherical_energy<Energy>& energy, const Points& x, Vector& d)
+  bool smoothing_direction(const Spherical_energy<Energy>& energy, const Points& x,
+                           const Coarse_correction* coarse_correction, Vector& d)
   {
     assemble(energy, x, false);
+    Vector coarse_step;
+    Vector residual = -gradient_;
+    if(coarse_correction && coarse_step_of(*coarse_correction, x, coarse_step))
+      residual.noalias() -= matrix_.template selfadjointView<Eigen::Lower>() * coarse_step;
+    block_jacobi(residual, d);
+    if(coarse_step.size() == 0)
+      return false;
+    d += coarse_step;
+    if(gradient_.dot(d) < 0)
+      return true;
+    block_jacobi(-gradient_, d);
+    return false;
+  }
+
+  // The coarse correction of the gradient_, in the tangent charts; false if it failed.
+  bool coarse_step_of(const Coarse_correction& coarse_correction, const Points& x, Vector& step) const
+  {
+    std::vector<Eigen::Vector3d> gradient(n_, Eigen::Vector3d::Zero()), displacement;
+    for(std::size_t v = 0; v < free_; ++v)
+      gradient[v] = bases_[v] * gradient_.template segment<2>(2 * v);
+    if(!coarse_correction(x, gradient, displacement) || displacement.size() != n_)
+      return false;
+    step.resize(2 * free_);
+    for(std::size_t v = 0; v < free_; ++v)
+      step.template segment<2>(2 * v) = bases_[v].transpose() * displacement[v];
+    return step.allFinite();
+  }
+
+  // d = J^-1 r for the block diagonal J of the assembled Hessian.
+  void block_jacobi(const Vector& r, Vector& d) const
+  {
     d.resize(2 * free_);
     for(std::size_t v = 0; v < free_; ++v) {
       const int k = diagonal_index_[2 * v];  // (2v, 2v), then (2v + 1, 2v) below it in the column
@@ -533,7 +633,7 @@ private:
       const double floor = 1e-6 * eigen.eigenvalues().cwiseAbs().maxCoeff() + std::numeric_limits<double>::min();
       const Eigen::Vector2d inverse = eigen.eigenvalues().cwiseAbs().cwiseMax(floor).cwiseInverse();
       d.template segment<2>(2 * v) =
-        -(eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose()) * gradient_.template segment<2>(2 * v);
+        (eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose()) * r.template segment<2>(2 * v);
     }
   }
 
@@ -566,16 +666,15 @@ private:
     if(!std::isfinite(mean_diagonal) || mean_diagonal == 0)
       return false;
     mu_floor_ = 1e-9 * mean_diagonal;
-    // The first exact attempt of a solve starts at 1e-4 x the mean diagonal: starts are far
-    // from a minimum, and growing from the floor cost 7 failed factorizations on bear.
-    mu = std::max(mu == 0 && !projected ? 1e-4 * mean_diagonal : mu, mu_floor_);
+    mu = std::max(mu == 0 && !projected ? first_shift_ * mean_diagonal : mu, mu_floor_);
     std::vector<double> diagonal(2 * free_);  // only the diagonal changes with the shift
     for(std::size_t i = 0; i < 2 * free_; ++i)
       diagonal[i] = matrix_.valuePtr()[diagonal_index_[i]];
     for(int attempt = 0; attempt < 60 && mu <= max_relative_shift * mean_diagonal; ++attempt, mu *= 8) {
       for(std::size_t i = 0; i < 2 * free_; ++i)
         matrix_.valuePtr()[diagonal_index_[i]] = diagonal[i] + mu;
-      if(solver_.factorize(matrix_)) {
+      factored_ = solver_.factorize(matrix_);
+      if(factored_) {
         shift_raised_ = attempt > 0;
         d = solver_.solve(-gradient_);
         return d.allFinite();
@@ -633,9 +732,12 @@ private:
   std::vector<int> entry_index_;
   std::vector<int> diagonal_index_;
   SparseSolver solver_;
+  bool factored_ = false;  // the last factorization succeeded: `solver_` holds a factor
   int exact_pause_ = 0;  // iterations to go before the exact Hessian is tried again
   bool shift_raised_ = false;  // the last factorization needed a larger shift than its first try
   double mu_exact_ = 0, mu_projected_ = 0, mu_floor_ = 0;
+  double first_shift_ = 1e-4;  // Newton_options::first_shift of the minimization under way
+  bool boost_search_ = false;   // Newton_options::boost_search of the minimization under way
 
   std::vector<Basis> bases_;
   std::vector<Triangle_jet::Gradient> face_gradient_;
