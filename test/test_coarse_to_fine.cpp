@@ -352,7 +352,7 @@ void test_two_grid_cycle()
   for(auto& p : sphere.points) p *= 1 + 0.05 * uniform(-1, 1);
   const I::Triangle_soup soup = I::make_triangle_soup(sphere.points, sphere.faces);
   const I::Progressive_mesh pm(soup, 200);
-  I::Coarse_to_fine<Newton> levels(soup, pm, 3);
+  I::Coarse_to_fine<Newton> levels(soup, pm, 3, true);
   const SP::Dirichlet_energy dirichlet;
   auto no_visitor = [](const SP::Progress&) { return true; };
   I::Newton_options options;

@@ -413,7 +413,8 @@ private:
       make_input_solver();
       input_.solver->prepare_memory();
     });
-    internal::Coarse_to_fine<Newton> levels(input_.soup, *hierarchy_, level_ratio);
+    const bool two_grid = input_.number_of_vertices() > two_grid_vertices;  // see minimize_level()
+    internal::Coarse_to_fine<Newton> levels(input_.soup, *hierarchy_, level_ratio, two_grid);
     internal::Points level_x;
     Level* coarse = levels.level();
     if(!coarse || !coarse_start(*coarse, level_x)) {  // the input itself, from its own central projection
@@ -442,7 +443,7 @@ private:
         return levels.coarse_correction(map, gradient, step);
       };
       uninterrupted = current.has_fold(y) ? robust_stages(run, current, y, visitor)
-                                          : minimize_level(run, current, y, visitor, level ? nullptr : &coarse_correction);
+                                          : minimize_level(run, current, y, visitor, !level, two_grid ? &coarse_correction : nullptr);
       if(level)
         level->scatter(y, x);
     }
@@ -452,14 +453,14 @@ private:
   }
 
   // A level after its vertex splits: an intermediate one to a loose tolerance, a few
-  // iterations; the input (`input_correction` given) to the tolerance.
+  // iterations; the input to the tolerance, starting with a two-grid cycle if given one.
   template <class Visitor>
-  bool minimize_level(Run& run, Level& level, internal::Points& x, Visitor& visitor,
-                      const internal::Coarse_correction* input_correction)
+  bool minimize_level(Run& run, Level& level, internal::Points& x, Visitor& visitor, bool is_input,
+                      const internal::Coarse_correction* two_grid)
   {
     // One block Jacobi step after the splits halved the Newton iterations of bunny00 after
     // one subdivision (7 -> 3): most of the error a split leaves is local.
-    if(input_correction) {
+    if(is_input) {
       run.options.predict_convergence = true;
       run.options.leave_under_floor = true;
       // On a large input the smooth error matters too. The smooth modes' curvature is
@@ -471,10 +472,9 @@ private:
       // 1.34 -> 0.45, 3 Newton iterations -> 2, 4.9 -> 4.0 s). On smaller inputs it
       // changed paths for no gain (the corpus' 14 meshes up to 38k vertices, 42 runs,
       // first shift 1e-5: iterations 4037 -> 4139, time +8%).
-      const std::size_t n = level.number_of_vertices();
-      if(n > two_grid_vertices) {
-        run.options.coarse_correction = input_correction;
-        run.options.first_shift = 1.5 / double(n);
+      if(two_grid) {
+        run.options.coarse_correction = two_grid;
+        run.options.first_shift = 1.5 / double(level.number_of_vertices());
       }
       const bool uninterrupted = minimize_fold_free(run, level, x, visitor, "target", 1);
       run.options.predict_convergence = false;

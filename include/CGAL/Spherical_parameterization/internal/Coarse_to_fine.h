@@ -132,8 +132,9 @@ template <class Newton>
 class Coarse_to_fine
 {
 public:
-  Coarse_to_fine(const Triangle_soup& input, const Progressive_mesh& pm, double ratio)
-    : input_(&input), refinement_(pm)
+  /// `two_grid`: keep the last level before the input for `coarse_correction()`.
+  Coarse_to_fine(const Triangle_soup& input, const Progressive_mesh& pm, double ratio, bool two_grid = false)
+    : input_(&input), refinement_(pm), two_grid_(two_grid)
   {
     for(double size = double(refinement_.number_of_vertices()) * ratio; size * std::sqrt(ratio) < double(input.number_of_vertices());
         size *= ratio)
@@ -158,20 +159,21 @@ public:
   {
     if(next_size_ == sizes_.size())
       return false;
-    const bool to_input = next_size_ + 1 == sizes_.size();
+    const bool into_input = next_size_ + 1 == sizes_.size();
+    const bool for_two_grid = two_grid_ && into_input;
     split_rings_.clear();
     while(refinement_.number_of_vertices() < sizes_[next_size_]) {
       const Vertex_split& split = refinement_.split_next();
       refinement_.fan(split, fan_);
       x[split.removed] = place_in_kernel(x, fan_, mean_value_point(split.removed, input_->points, x, fan_));
       empty_kernels_ += !(fan_clearance(x[split.removed], x, fan_) > 0);
-      if(to_input)
+      if(for_two_grid)
         split_rings_.add(split.removed, fan_);
     }
     ++next_size_;
     // The last level before the input, with its last factorization, serves the input's
     // coarse correction (`coarse_correction()`).
-    if(to_input && level_)
+    if(for_two_grid && level_)
       last_level_ = std::move(level_);
     level_.reset();
     return true;
@@ -231,6 +233,7 @@ private:
 
   const Triangle_soup* input_;
   Refinement refinement_;
+  bool two_grid_;
   std::vector<std::size_t> sizes_;  // of the levels after the coarsest, the input's last
   std::size_t next_size_ = 0;
   std::unique_ptr<Level<Newton>> level_, last_level_;
