@@ -32,6 +32,7 @@
 #include <CGAL/property_map.h>
 #include <CGAL/tags.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -469,12 +470,13 @@ private:
       // Jacobi does not see them. There the block Jacobi step is a two-grid cycle with the
       // last level's factorization, and the first shift a fifth of that curvature
       // (bunny00 after one subdivision, 151k vertices, Combined: the first Newton decrement
-      // 1.34 -> 0.45, 3 Newton iterations -> 2, 4.9 -> 4.0 s). On smaller inputs it
-      // changed paths for no gain (the corpus' 14 meshes up to 38k vertices, 42 runs,
-      // first shift 1e-5: iterations 4037 -> 4139, time +8%).
+      // 1.34 -> 0.45, 3 Newton iterations -> 2, 4.9 -> 4.1 s), but at least 1e-5 (at 603k
+      // vertices, 2.5e-6 made Dirichlet 58 -> 67 s). On smaller inputs the cycle changed
+      // paths for no gain (the corpus' 14 meshes up to 38k vertices, 42 runs, first shift
+      // 1e-5: iterations 4037 -> 4139, time +8%).
       if(two_grid) {
         run.options.coarse_correction = two_grid;
-        run.options.first_shift = 1.5 / double(level.number_of_vertices());
+        run.options.first_shift = std::max(1.5 / double(level.number_of_vertices()), 1e-5);
       }
       const bool uninterrupted = minimize_fold_free(run, level, x, visitor, "target", 1);
       run.options.predict_convergence = false;
