@@ -392,8 +392,7 @@ private:
     if(!boost_search_ || free_ != n_)
       return 0;
     const double before = e;
-    if(boost_step(x, [&](const Points& y) { return total_energy(energy, y); }, e))
-      e = total_energy(energy, x);
+    boost_step(x, [&](const Points& y) { return total_energy(energy, y); }, e);
     return before - e;
   }
 

@@ -33,9 +33,9 @@ inline Eigen::Vector3d mobius_boost(const Eigen::Vector3d& b, const Eigen::Vecto
 /// variables, damped by its shift, was measured to slide along them over 100 iterations
 /// and more (Dirichlet on bunny00: a boost of 0.29 between the 100th and the 200th
 /// iteration, all else still). Derivatives by finite differences: 9 energy evaluations.
-/// Returns true if the map moved.
+/// Returns true if the map moved; `e0`, the energy of `x` on entry, is then its new energy.
 template <class EnergyFunction>
-bool boost_step(Points& x, const EnergyFunction& energy, double e0)
+bool boost_step(Points& x, const EnergyFunction& energy, double& e0)
 {
   constexpr double h = 1e-3;
   Points y(x.size());
@@ -65,8 +65,10 @@ bool boost_step(Points& x, const EnergyFunction& energy, double e0)
   if(step.norm() > 0.5)  // stay well inside the ball
     step *= 0.5 / step.norm();
   for(int k = 0; k < 20; ++k, step *= 0.5) {
-    if(boosted(step) < e0 + 1e-4 * gradient.dot(step)) {
+    const double e = boosted(step);
+    if(e < e0 + 1e-4 * gradient.dot(step)) {
       x.swap(y);
+      e0 = e;
       return true;
     }
   }
