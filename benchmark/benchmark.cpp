@@ -175,7 +175,7 @@ struct Run_record
   bool ran = false;          // the child finished and reported
   int status = 0;            // SP::Error_code
   char detail[200] = "";
-  char stages[200] = "";
+  char stages[1000] = "";  // a run through every level of 1.2M faces needs about 300
   double seconds = 0;
   std::size_t iterations = 0;
   double energy = 0;
