@@ -33,9 +33,9 @@ inline Eigen::Vector3d mobius_boost(const Eigen::Vector3d& b, const Eigen::Vecto
 /// variables, damped by its shift, was measured to slide along them over 100 iterations
 /// and more (Dirichlet on bunny00: a boost of 0.29 between the 100th and the 200th
 /// iteration, all else still). Derivatives by finite differences: 9 energy evaluations.
-/// Returns true if the map moved; `e0`, the energy of `x` on entry, is then its new energy.
+/// Returns true if the map moved; `current`, the energy of `x`, then follows it.
 template <class EnergyFunction>
-bool boost_step(Points& x, const EnergyFunction& energy, double& e0)
+bool boost_step(Points& x, const EnergyFunction& energy, double& current)
 {
   constexpr double h = 1e-3;
   Points y(x.size());
@@ -50,14 +50,14 @@ bool boost_step(Points& x, const EnergyFunction& energy, double& e0)
     plus[i] = boosted(h * Eigen::Vector3d::Unit(i));
     const double minus = boosted(-h * Eigen::Vector3d::Unit(i));
     gradient[i] = (plus[i] - minus) / (2 * h);
-    hessian(i, i) = (plus[i] - 2 * e0 + minus) / (h * h);
+    hessian(i, i) = (plus[i] - 2 * current + minus) / (h * h);
   }
   // Mixed terms by one-sided differences, accurate to O(h): enough for this step (the line
   // search follows), and 9 energy evaluations in all instead of 19.
   for(int i = 0; i < 3; ++i)
     for(int j = 0; j < i; ++j)
       hessian(i, j) = hessian(j, i) =
-        (boosted(h * (Eigen::Vector3d::Unit(i) + Eigen::Vector3d::Unit(j))) - plus[i] - plus[j] + e0) / (h * h);
+        (boosted(h * (Eigen::Vector3d::Unit(i) + Eigen::Vector3d::Unit(j))) - plus[i] - plus[j] + current) / (h * h);
   if(!gradient.allFinite() || !hessian.allFinite())
     return false;
   const Eigen::LLT<Eigen::Matrix3d> llt(hessian);
@@ -65,10 +65,9 @@ bool boost_step(Points& x, const EnergyFunction& energy, double& e0)
   if(step.norm() > 0.5)  // stay well inside the ball
     step *= 0.5 / step.norm();
   for(int k = 0; k < 20; ++k, step *= 0.5) {
-    const double e = boosted(step);
-    if(e < e0 + 1e-4 * gradient.dot(step)) {
+    if(const double e = boosted(step); e < current + 1e-4 * gradient.dot(step)) {
       x.swap(y);
-      e0 = e;
+      current = e;
       return true;
     }
   }
