@@ -173,8 +173,10 @@ public:
     ++next_size_;
     // The last level before the input, with its last factorization, serves the input's
     // coarse correction (`coarse_correction()`).
-    if(for_two_grid && level_)
+    if(for_two_grid && level_) {
       last_level_ = std::move(level_);
+      last_level_->solver->keep_only_last_factor();
+    }
     level_.reset();
     return true;
   }

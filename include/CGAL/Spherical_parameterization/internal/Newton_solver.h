@@ -290,6 +290,23 @@ public:
   /// The tangent basis of each vertex at the last iterate whose Hessian was assembled.
   const std::vector<Basis>& bases() const { return bases_; }
 
+  /// Frees the matrix and the per-face buffers, keeping the last factor and `bases()`: after
+  /// this the solver can only `solve_with_last_factor()`. At 1.2M faces the level kept for
+  /// the input's two-grid cycle (243k faces) otherwise holds them until the input's first step.
+  void keep_only_last_factor()
+  {
+    Matrix empty;
+    matrix_.swap(empty);
+    std::vector<int>().swap(entry_index_);
+    std::vector<int>().swap(diagonal_index_);
+    std::vector<Fold_barrier::Face_data>().swap(barrier_data_);
+    std::vector<Triangle_jet::Gradient>().swap(face_gradient_);
+    std::vector<double>().swap(face_hessian_);
+    std::vector<double>().swap(face_value_);
+    std::vector<Eigen::Vector3d>().swap(ambient_gradient_);
+    Vector().swap(gradient_);
+  }
+
   /// Allocates the buffers of the first assembly and the factor (the solver traits'
   /// `allocate_factor()`, if they have it) and writes them once. Fresh memory is slow on
   /// virtual machines (a page fault in the host per page): at 302k faces the first
