@@ -416,6 +416,9 @@ private:
     });
     const bool two_grid = input_.number_of_vertices() > two_grid_vertices;  // see minimize_level()
     internal::Coarse_to_fine<Newton> levels(input_.soup, *hierarchy_, level_ratio, two_grid);
+    const internal::Coarse_correction coarse_correction = [&levels](const auto& map, const auto& gradient, auto& step) {
+      return levels.coarse_correction(map, gradient, step);
+    };
     internal::Points level_x;
     Level* coarse = levels.level();
     if(!coarse || !coarse_start(*coarse, level_x)) {  // the input itself, from its own central projection
@@ -440,9 +443,6 @@ private:
       Level& current = level ? *level : input_;
       internal::Points& y = level ? level_x : x;
       run.stages += std::string(" | ") + (level ? "" : "input ") + std::to_string(current.number_of_vertices()) + "v:";
-      const internal::Coarse_correction coarse_correction = [&levels](const auto& map, const auto& gradient, auto& step) {
-        return levels.coarse_correction(map, gradient, step);
-      };
       uninterrupted = current.has_fold(y) ? robust_stages(run, current, y, visitor)
                                           : minimize_level(run, current, y, visitor, !level, two_grid ? &coarse_correction : nullptr);
       if(level)
