@@ -8,6 +8,7 @@
 // UndefinedBehaviorSanitizer (the `fast` CTest label).
 // Usage: test_robustness [ignored arguments]
 
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 
@@ -442,6 +443,24 @@ double smallest_angle_degrees(const Mesh& mesh)
   return smallest;
 }
 
+/// `count` faces, chosen at random, split in three at a point `height` (relative) above the
+/// midpoint of one of their edges: slivers of tiny area, as CAD tessellations and cleaned-up
+/// scans have.
+Mesh with_slivers(const Mesh& mesh, int count, double height)
+{
+  Mesh copy = mesh;
+  std::vector<Mesh::Face_index> faces(copy.faces().begin(), copy.faces().end());
+  std::shuffle(faces.begin(), faces.end(), rng);
+  for(int i = 0; i < count && i < int(faces.size()); ++i) {
+    const auto h = copy.halfedge(faces[i]);
+    const Point a = copy.point(copy.source(h)), b = copy.point(copy.target(h)), c = copy.point(copy.target(copy.next(h)));
+    const Point middle = CGAL::midpoint(a, b);
+    const Vertex v = copy.target(CGAL::Euler::add_center_vertex(h, copy));
+    copy.point(v) = middle + height * (c - middle);
+  }
+  return copy;
+}
+
 /// A valid map, on its own points, with the default parameters.
 void test_irregular(Mesh mesh, const std::string& what)
 {
@@ -471,6 +490,10 @@ void test_irregular_shapes()
   report("[bumpy ellipsoid jittered]: skinny triangles (smallest angle under 5 degrees, over 15 before)",
          after < 5 && before > 15, std::to_string(before) + " -> " + std::to_string(after));
   test_irregular(uneven, "jittered by up to 45% of the edges");
+  // Slivers on protrusions: with a raised barrier activation and the kernel's centroid for their
+  // split vertices, they ended degenerate or far above the minimum (doc/NOTES.md, session 28).
+  test_irregular(with_slivers(transformed(base, [](const Point& p) { return Point(p.x(), p.y(), 8 * p.z()); }), 50, 1e-6),
+                 "stretched 8 times along z, with 50 slivers of relative height 1e-6");
   std::cerr << "time irregular shapes: " << seconds_since(start) << " s" << std::endl;
 }
 

@@ -317,7 +317,7 @@ private:
       run.options.stop_slow_capped_tail = is_input;
       const bool done = minimize(energy_, stage, true, run, level, x, visitor);
       run.options.stop_slow_capped_tail = false;
-      return done;
+      return done && (!is_input || lift_deep_faces(run, x, visitor));
     };
     if(is_input && fold_free_minimum && level.solver->is_above_floor(x, near_floor * floor, internal::degenerate_determinant)) {
       if(lift_locally(run, x, visitor) || run.interrupted)
@@ -352,10 +352,52 @@ private:
   {
     const double minimum = last_energy_;
     const bool at_minimum = last_level_stop_ != internal::Newton_stop::ITERATION_CAP;
-    internal::Floor_patch patch = internal::make_floor_patch(
-      input_.soup, input_.solver->faces_under_floor(x, run.options.fold_floor), patch_rings);
-    if(patch.free_vertices > input_.number_of_vertices() / 4)  // not local: the global stage
-      return false;
+    const std::optional<double> added =
+      floor_stage_on_patch(run, x, visitor, input_.solver->faces_under_floor(x, run.options.fold_floor), minimum,
+                           "floor patch", patch_rings, input_.number_of_vertices() / 4, 100);
+    return added && !run.interrupted && at_minimum && last_level_stop_ == internal::Newton_stop::CONVERGED &&
+           *added <= 0.5 * run.options.tolerance * std::abs(minimum);
+  }
+
+  // The input's floor stage may end with faces of tiny input area far under the floor, even
+  // degenerate: their barrier weighs less than the tolerance, so the stage converges (or its
+  // capped tail stops) without lifting them (cow with 50 slivers of relative height 1e-6: two
+  // faces at det 2e-17, no valid map). Faces under a hundredth of the floor, or under the
+  // barrier's determinant floor, are lifted on their own patch, one ring around them
+  // (`floor_stage_on_patch()`), where the cap of the faces elsewhere no longer holds their
+  // steps back, to a tolerance 1e4 times tighter: each Newton step on a log barrier lifts a
+  // face's `t` about 4 times and gains about twice the barrier's weight, 5e-6 for a tiny face
+  // (`Fold_barrier::face_weight()`), which a tolerance 100 times tighter (6e-7 of an energy
+  // of 60) called converged after one step. However large that patch: a valid map needs it.
+  // At most `deep_lift_iterations`: the lift itself takes about 20 (t from 1e-10 of the
+  // floor to the floor), the rest is the patch's slow slide under the tighter tolerance, which
+  // the user's tolerance, already met, does not ask for (cow with slivers: 149 iterations).
+  // False if interrupted.
+  template <class Visitor>
+  bool lift_deep_faces(Run& run, internal::Points& x, Visitor& visitor)
+  {
+    const std::vector<int> deep = input_.solver->faces_under_floor(x, 1e-2 * run.options.fold_floor);
+    if(deep.empty())
+      return true;
+    const std::size_t max_iterations = run.options.max_iterations;
+    run.options.max_iterations = std::min<std::size_t>(max_iterations, deep_lift_iterations);
+    floor_stage_on_patch(run, x, visitor, deep, last_energy_, "deep faces", 1, input_.number_of_vertices(), 1e4);
+    run.options.max_iterations = max_iterations;
+    return !run.interrupted;
+  }
+
+  // The floor stage on the neighbourhood of the input's faces `seeds`, the rest of the map held
+  // (internal::Floor_patch), freeing `rings` rings around them, to a tolerance `tightening`
+  // times tighter, relative to the whole map's energy `minimum`. Returns the energy it added,
+  // none if the patch would free more than `max_free` vertices (nothing done).
+  template <class Visitor>
+  std::optional<double> floor_stage_on_patch(Run& run, internal::Points& x, Visitor& visitor, const std::vector<int>& seeds,
+                                             double minimum, const char* stage, int rings, std::size_t max_free,
+                                             double tightening)
+  {
+    internal::Floor_patch patch = internal::make_floor_patch(input_.soup, seeds, rings);
+    if(patch.free_vertices > max_free)
+      return std::nullopt;
     Level level;
     level.soup = std::move(patch.soup);
     level.to_input = std::move(patch.to_input);
@@ -366,14 +408,12 @@ private:
     const double before = patch_energy.template value<ConcurrencyTag>(y);
     const double tolerance = run.options.tolerance;
     run.options.held_energy = minimum - before;
-    run.options.tolerance = tolerance / 100;
-    const bool uninterrupted = minimize(energy_, "floor patch", true, run, level, y, visitor);
+    run.options.tolerance = tolerance / tightening;
+    minimize(energy_, stage, true, run, level, y, visitor);
     run.options.held_energy = 0;
     run.options.tolerance = tolerance;
     level.scatter(y, x);
-    const double added = last_energy_ - before;
-    return uninterrupted && at_minimum && last_level_stop_ == internal::Newton_stop::CONVERGED &&
-           added <= 0.5 * run.options.tolerance * std::abs(minimum);
+    return last_energy_ - before;
   }
 
   // Garanzha et al.'s continuation: unfold with a finite energy, then tighten the barrier.
@@ -615,6 +655,7 @@ private:
   static constexpr double near_floor = 0.1;
   // The rings around the faces under the floor that the floor patch frees (`lift_locally()`).
   static constexpr int patch_rings = 3;
+  static constexpr std::size_t deep_lift_iterations = 40;  // see `lift_deep_faces()`
 
   Level input_;
   std::unique_ptr<internal::Progressive_mesh> hierarchy_;
