@@ -321,7 +321,7 @@ private:
     };
     if(is_input && fold_free_minimum && level.solver->is_above_floor(x, near_floor * floor, internal::degenerate_determinant)) {
       if(lift_locally(run, x, visitor) || run.interrupted)
-        return !run.interrupted;
+        return !run.interrupted && lift_deep_faces(run, x, visitor);
       return floor_stage();
     }
     x = std::move(fold_free);
