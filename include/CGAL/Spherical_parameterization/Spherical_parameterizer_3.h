@@ -362,8 +362,8 @@ private:
   // The input's floor stage may end with faces of tiny input area far under the floor, even
   // degenerate: their barrier weighs less than the tolerance, so the stage converges (or its
   // capped tail stops) without lifting them (cow with 50 slivers of relative height 1e-6: two
-  // faces at det 2e-17, no valid map). Faces under a hundredth of the floor, or under the
-  // barrier's determinant floor, are lifted on their own patch, one ring around them
+  // faces at det 2e-17, no valid map). Faces under a hundredth of their activation (the
+  // floor, raised for faces of tiny input area) are lifted on their own patch, one ring around them
   // (`floor_stage_on_patch()`), where the cap of the faces elsewhere no longer holds their
   // steps back, to a tolerance 1e4 times tighter: each Newton step on a log barrier lifts a
   // face's `t` about 4 times and gains about twice the barrier's weight, 5e-6 for a tiny face
@@ -376,7 +376,7 @@ private:
   template <class Visitor>
   bool lift_deep_faces(Run& run, internal::Points& x, Visitor& visitor)
   {
-    const std::vector<int> deep = input_.solver->faces_under_floor(x, 1e-2 * run.options.fold_floor);
+    const std::vector<int> deep = input_.solver->faces_under_floor(x, run.options.fold_floor, 1e-2);
     if(deep.empty())
       return true;
     const std::size_t max_iterations = run.options.max_iterations;

@@ -342,14 +342,15 @@ public:
   }
 
   /// The faces the fold barrier of `floor` holds (`Fold_barrier::face_activation()`), or
-  /// that are flipped or degenerate.
-  std::vector<int> faces_under_floor(const Points& x, double floor)
+  /// that are flipped or degenerate; with `share`, only those under that share of their
+  /// activation.
+  std::vector<int> faces_under_floor(const Points& x, double floor, double share = 1)
   {
     face_value_.resize(faces_->size());
     parallel_for<ConcurrencyTag>(faces_->size(), [&](std::size_t f) {
       double det;
       const double t = face_scale(f, x, det);
-      face_value_[f] = !(det > 0) || t < Fold_barrier::face_activation(barrier_data_[f], floor);
+      face_value_[f] = !(det > 0) || t < share * Fold_barrier::face_activation(barrier_data_[f], floor);
     });
     std::vector<int> under;
     for(std::size_t f = 0; f < face_value_.size(); ++f)
