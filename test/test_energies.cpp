@@ -18,6 +18,7 @@
 #include <CGAL/Spherical_parameterization/Weighted_sum_energy.h>
 #include <CGAL/Spherical_parameterization/d_min_correction.h>
 #include <CGAL/Spherical_parameterization/internal/Fold_barrier.h>
+#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
 #include <CGAL/Spherical_parameterization/internal/Untangling_energy.h>
 #include <CGAL/Spherical_parameterization/internal/step_bound.h>
 #include <CGAL/Spherical_parameterization/internal/tangent_basis.h>
@@ -675,9 +676,70 @@ void test_tangent_basis()
          "err. " + str(poles));
 }
 
+// ---------------------------------------------------------------------------------------
+// Reference triangles of nearly degenerate faces
+
+std::array<double, 3> edge_lengths(const SP::Reference_triangle& r)
+{
+  std::array<double, 3> l;
+  for(int i = 0; i < 3; ++i) l[i] = (r.points[(i + 1) % 3] - r.points[(i + 2) % 3]).norm();
+  return l;
+}
+
+void test_mollified_triangles()
+{
+  namespace I = SP::internal;
+  // Fair triangles keep their exact points; a triangle of the plane from their edge lengths
+  // has those lengths and the same area.
+  bool fair_kept = true;
+  double planar_error = 0;
+  for(int n = 0; n < 1000; ++n) {
+    const SP::Reference_triangle fair = random_reference(uniform(1e-6, 10.0));
+    const SP::Reference_triangle same = I::mollified_triangle(fair.points[0], fair.points[1], fair.points[2]);
+    fair_kept = fair_kept && same.points == fair.points && same.area == fair.area;
+    const std::array<double, 3> l = edge_lengths(fair);
+    const SP::Reference_triangle planar = I::planar_triangle(l);
+    const std::array<double, 3> lp = edge_lengths(planar);
+    for(int i = 0; i < 3; ++i) planar_error = std::max(planar_error, std::abs(lp[i] - l[i]) / l[i]);
+    planar_error = std::max(planar_error, std::abs(planar.area - fair.area) / fair.area);
+  }
+  report("mollified_triangle keeps fair triangles (smallest angle over 10 degrees) bit for bit", fair_kept);
+  report("planar_triangle has the given edge lengths and Heron's area (rel 1e-12)", planar_error <= 1e-12,
+         "rel. err. " + str(planar_error));
+
+  // Needles (a near-duplicate vertex, collinear up to rounding) and slivers: one length added
+  // to the three edges, which gives the triangle inequalities exactly the margin.
+  const Vector a(0.3, -0.2, 0.1), b(1.7, 0.4, -0.5), c(0.2, 1.1, 0.9);
+  const std::vector<std::array<Vector, 3>> thin{
+    {a, a + 1e-9 * (b - a), b},                            // collinear but for rounding
+    {a, a + 1e-6 * (b - a) + 1e-7 * (c - a), c},           // a needle
+    {a, b, 0.5 * (a + b) + 1e-8 * (c - 0.5 * (a + b))},    // a sliver
+    {a, b, 0.5 * (a + b)}};                                // collinear
+  double added_spread = 0, margin_error = 0;
+  bool fat_enough = true;
+  for(const auto& t : thin) {
+    const SP::Reference_triangle r = I::mollified_triangle(t[0], t[1], t[2]);
+    const std::array<double, 3> l{(t[1] - t[2]).norm(), (t[2] - t[0]).norm(), (t[0] - t[1]).norm()};
+    const std::array<double, 3> lm = edge_lengths(r);
+    const double added = lm[0] - l[0], longest = *std::max_element(lm.begin(), lm.end());
+    added_spread = std::max({added_spread, std::abs(lm[1] - l[1] - added) / longest, std::abs(lm[2] - l[2] - added) / longest});
+    const double margin = lm[0] + lm[1] + lm[2] - 2 * longest;
+    margin_error = std::max(margin_error, std::abs(margin / longest - I::reference_margin) / I::reference_margin);
+    const double angles = r.angles[0] + r.angles[1] + r.angles[2];
+    fat_enough = fat_enough && added > 0 && r.area > 0 && std::abs(angles - M_PI) < 1e-12 &&
+                 *std::min_element(r.angles.begin(), r.angles.end()) > 1e-4;
+  }
+  report("mollified_triangle adds one length to the three edges of thin triangles (rel 1e-12)", added_spread <= 1e-12,
+         "rel. spread " + str(added_spread));
+  report("mollified_triangle gives thin triangles the margin reference_margin * longest edge (rel 1e-6)",
+         margin_error <= 1e-6, "rel. err. " + str(margin_error));
+  report("mollified_triangle of thin triangles: positive area, angles over 1e-4 summing to pi", fat_enough);
+}
+
 int main()
 {
   rng.seed(20260501);
+  test_mollified_triangles();
   test_energies();
   test_untangling_on_folded_faces();
   test_squared_d_min();

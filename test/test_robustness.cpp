@@ -443,10 +443,9 @@ double smallest_angle_degrees(const Mesh& mesh)
   return smallest;
 }
 
-/// `count` faces, chosen at random, split in three at a point `height` (relative) above the
-/// midpoint of one of their edges: slivers of tiny area, as CAD tessellations and cleaned-up
-/// scans have.
-Mesh with_slivers(const Mesh& mesh, int count, double height)
+/// `count` faces, chosen at random, each split in three at the point `place(a, b, c)` of its
+/// corners.
+Mesh with_split_faces(const Mesh& mesh, int count, const std::function<Point(const Point&, const Point&, const Point&)>& place)
 {
   Mesh copy = mesh;
   std::vector<Mesh::Face_index> faces(copy.faces().begin(), copy.faces().end());
@@ -454,11 +453,27 @@ Mesh with_slivers(const Mesh& mesh, int count, double height)
   for(int i = 0; i < count && i < int(faces.size()); ++i) {
     const auto h = copy.halfedge(faces[i]);
     const Point a = copy.point(copy.source(h)), b = copy.point(copy.target(h)), c = copy.point(copy.target(copy.next(h)));
-    const Point middle = CGAL::midpoint(a, b);
     const Vertex v = copy.target(CGAL::Euler::add_center_vertex(h, copy));
-    copy.point(v) = middle + height * (c - middle);
+    copy.point(v) = place(a, b, c);
   }
   return copy;
+}
+
+/// Faces split at a point `height` (relative) above the midpoint of one of their edges:
+/// slivers of tiny area, as CAD tessellations and cleaned-up scans have.
+Mesh with_slivers(const Mesh& mesh, int count, double height)
+{
+  return with_split_faces(mesh, count, [height](const Point& a, const Point& b, const Point& c) {
+    const Point middle = CGAL::midpoint(a, b);
+    return middle + height * (c - middle);
+  });
+}
+
+/// Faces split at a point `distance` (relative) from a corner, on an edge but for rounding:
+/// a near-duplicate vertex, as welding leaves, and two needles.
+Mesh with_needles(const Mesh& mesh, int count, double distance)
+{
+  return with_split_faces(mesh, count, [distance](const Point& a, const Point&, const Point& c) { return a + distance * (c - a); });
 }
 
 /// A valid map, on its own points, with the default parameters.
@@ -494,6 +509,9 @@ void test_irregular_shapes()
   // split vertices, they ended degenerate or far above the minimum (doc/NOTES.md, session 28).
   test_irregular(with_slivers(transformed(base, [](const Point& p) { return Point(p.x(), p.y(), 8 * p.z()); }), 50, 1e-6),
                  "stretched 8 times along z, with 50 slivers of relative height 1e-6");
+  // Near-duplicate vertices: their needles, all but degenerate, gave the area term weights of
+  // 1e16 and no valid map, before reference triangles were mollified (doc/NOTES.md, session 29).
+  test_irregular(with_needles(base, 50, 1e-6), "with 50 near-duplicate vertices at 1e-6 of an edge");
   std::cerr << "time irregular shapes: " << seconds_since(start) << " s" << std::endl;
 }
 

@@ -14,8 +14,10 @@ namespace CGAL {
 namespace Spherical_parameterization {
 
 /// \ingroup PkgSphericalParameterizationEnergies
-/// An input triangle, after the whole mesh has been scaled to the sphere's area `4 pi`.
-/// Energies read their weights and areas from it (never from the sphere points).
+/// An input triangle, after the whole mesh has been scaled to the sphere's area `4 pi`; for a
+/// nearly degenerate one, a slightly fatter triangle of the plane (the user manual's
+/// intrinsic mollification). Energies read their weights and areas from it (never from the
+/// sphere points).
 struct Reference_triangle
 {
   std::array<Eigen::Vector3d, 3> points;  ///< the vertices, in the order of the face
