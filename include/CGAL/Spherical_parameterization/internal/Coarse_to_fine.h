@@ -165,8 +165,7 @@ public:
     while(refinement_.number_of_vertices() < sizes_[next_size_]) {
       const Vertex_split& split = refinement_.split_next();
       refinement_.fan(split, fan_);
-      x[split.removed] = place_in_kernel(x, fan_, mean_value_point(split.removed, input_->points, x, fan_),
-                                         required_clearances(split.removed, input_->points, fan_));
+      x[split.removed] = place_in_kernel(x, fan_, mean_value_point(split.removed, input_->points, x, fan_));
       empty_kernels_ += !(fan_clearance(x[split.removed], x, fan_) > 0);
       if(for_two_grid)
         split_rings_.add(split.removed, fan_);

@@ -95,32 +95,14 @@ inline Eigen::Vector3d mean_value_point(int u, const Points& input, const Points
   return sum.normalized();
 }
 
-/// The clearance (`fan_clearance()`) that each face `(u, p, q)` of the fan needs for a point
-/// to lie well inside it: 0.05, or a quarter of the face's own clearance on the input surface
-/// where that is under 0.01 (a sliver; below 0.2 already, it sent Dirichlet on bunny00 from 34
-/// to 95 iterations). A sliver of the input stays a sliver: moved to the kernel's centroid,
-/// it came out fat, its area energy thousands of times its input area's (Combined on
-/// triceratops with 50 slivers of relative height 1e-6: the input level started at an energy
-/// of 2697 against 59 at the level before, and took 321 iterations, not converged).
-inline std::vector<double> required_clearances(int u, const Points& input, const Fan& fan)
-{
-  std::vector<double> required;
-  for(const auto& [p, q] : fan) {
-    const Eigen::Vector3d &a = input[p], &b = input[q];
-    const double own = (a - input[u]).cross(b - input[u]).norm() / (a - b).squaredNorm();
-    required.push_back(own < 0.01 ? 0.25 * own : 0.05);
-  }
-  return required;
-}
-
 /// A point of the unit sphere inside the kernel of the fan: every face `(x, p, q)` positively
-/// oriented. First `guess`: kept if it lies well inside, each face's clearance above its
-/// `required` one (`required_clearances()`; 0.05 for every face if empty). Otherwise the area
-/// centroid of the kernel, computed in the gnomonic chart at `guess`, where the great circles
-/// through `p` and `q` are lines and the kernel a convex polygon. Returns the better of the
-/// two by `fan_clearance`; the caller checks that it is positive (the kernel can be empty).
-inline Eigen::Vector3d place_in_kernel(const Points& points, const Fan& fan, const Eigen::Vector3d& guess,
-                                       const std::vector<double>& required = {})
+/// oriented. First `guess`: kept if it lies well inside. Otherwise the area centroid of the
+/// kernel, computed in the gnomonic chart at `guess`, where the great circles through `p`
+/// and `q` are lines and the kernel a convex polygon. Returns the better of the two by
+/// `fan_clearance`; the caller checks that it is positive (the kernel can be empty).
+/// Nearly degenerate input faces need no care here: their reference triangles are made fat
+/// enough (`mollified_triangle()`) for a fat image to cost little.
+inline Eigen::Vector3d place_in_kernel(const Points& points, const Fan& fan, const Eigen::Vector3d& guess)
 {
   Eigen::Vector3d center = guess;
   if(!center.allFinite() || !(center.norm() > 0.5)) {
@@ -128,12 +110,9 @@ inline Eigen::Vector3d place_in_kernel(const Points& points, const Fan& fan, con
     for(const auto& [p, q] : fan) center += points[p].cross(points[q]);
     center.normalize();
   }
-  bool well_inside = true;  // a fair start for the solver
-  for(std::size_t f = 0; f < fan.size() && well_inside; ++f)
-    well_inside = face_clearance(center, points[fan[f][0]], points[fan[f][1]]) > (required.empty() ? 0.05 : required[f]);
-  if(well_inside)
-    return center;
   const double center_clearance = fan_clearance(center, points, fan);
+  if(center_clearance > 0.05)  // well inside: a fair start for the solver
+    return center;
 
   const Eigen::Matrix<double, 3, 2> basis = tangent_basis(center);
   std::vector<Eigen::Vector2d> normals;
