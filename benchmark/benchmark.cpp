@@ -8,7 +8,8 @@
 // Usage:
 //   benchmark [--repeats N] [--energies tutte,dirichlet,combined] [--pipeline robust|paper]
 //             [--max-seconds S] [--no-fork] [--json FILE] [--csv FILE] MESH...
-// A MESH ending in "@loopN" (e.g. bunny00.off@loop2) is Loop-subdivided N times after reading.
+// A MESH ending in "@loopN" (e.g. bunny00.off@loop2) is Loop-subdivided N times after reading;
+// "@sliversN" and "@needlesN" then add N nearly degenerate faces of each kind (mesh_defects.h).
 //
 // Each run is done in a forked child process, so that its peak memory (ru_maxrss of the
 // child) belongs to that run alone; see README.md.
@@ -22,6 +23,8 @@
 #include <CGAL/Spherical_parameterization/Energy_mix.h>
 #include <CGAL/Spherical_parameterization/measure_distortion.h>
 #include <CGAL/Spherical_parameterization/internal/solver_threads.h>
+
+#include "mesh_defects.h"
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -44,6 +47,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -76,7 +80,8 @@ void usage(const char* program)
   std::cerr << "usage: " << program
             << " [--repeats N] [--energies tutte,dirichlet,combined] [--pipeline robust|paper]\n"
                "       [--max-seconds S] [--no-fork] [--json FILE] [--csv FILE] MESH...\n"
-               "A MESH path ending in @loopN is Loop-subdivided N times before timing.\n";
+               "A MESH path ending in @loopN is Loop-subdivided N times before timing; @sliversN and\n"
+               "@needlesN then split N faces into slivers or needles (e.g. cow.off@needles50).\n";
 }
 
 std::vector<std::string> split(const std::string& s, char separator)
@@ -452,27 +457,37 @@ Yardstick measure_yardstick(const Mesh& mesh)
 
 struct Mesh_input
 {
-  std::string path;   // as given, possibly with @loopN
-  std::string file;   // without @loopN
-  std::string name;   // file stem, with @loopN
-  int loops = 0;
+  std::string path;  // as given, possibly with suffixes
+  std::string file;  // without them
+  std::string name;  // file stem, with the suffixes
+  int loops = 0;     // @loopN: Loop subdivisions
+  int slivers = 0;   // @sliversN: faces split at 1e-6 above an edge's midpoint, after subdividing
+  int needles = 0;   // @needlesN: faces split at 1e-6 of an edge from a corner, 1e-7 off it
 };
 
-Mesh_input parse_mesh_argument(const std::string& argument)
+/// `MESH[@loopN][@sliversN][@needlesN]`; nothing on an unknown suffix.
+std::optional<Mesh_input> parse_mesh_argument(const std::string& argument)
 {
   Mesh_input in;
   in.path = argument;
-  in.file = argument;
-  const std::size_t at = argument.rfind("@loop");
-  if(at != std::string::npos) {
-    in.file = argument.substr(0, at);
-    in.loops = std::atoi(argument.c_str() + at + 5);
-  }
-  std::string stem = in.file.substr(in.file.find_last_of('/') == std::string::npos ? 0 : in.file.find_last_of('/') + 1);
+  const std::size_t slash = argument.find_last_of('/');
+  const std::size_t at = argument.find('@', slash == std::string::npos ? 0 : slash + 1);
+  in.file = argument.substr(0, at);
+  if(at != std::string::npos)
+    for(const std::string& suffix : split(argument.substr(at + 1), '@')) {
+      const std::size_t digits = suffix.find_first_of("0123456789");
+      const std::string kind = suffix.substr(0, digits);
+      const int count = digits == std::string::npos ? 0 : std::atoi(suffix.c_str() + digits);
+      int* field = kind == "loop" ? &in.loops : kind == "slivers" ? &in.slivers : kind == "needles" ? &in.needles : nullptr;
+      if(!field || count <= 0)
+        return std::nullopt;
+      *field = count;
+    }
+  std::string stem = in.file.substr(slash == std::string::npos ? 0 : slash + 1);
   const std::size_t dot = stem.rfind('.');
   if(dot != std::string::npos && dot > 0)
     stem = stem.substr(0, dot);
-  in.name = in.loops > 0 ? stem + "@loop" + std::to_string(in.loops) : stem;
+  in.name = stem + (at == std::string::npos ? "" : argument.substr(at));
   return in;
 }
 
@@ -660,7 +675,13 @@ int main(int argc, char** argv)
   std::vector<Row> rows;
   bool failures = false;
   for(const std::string& argument : options.meshes) {
-    const Mesh_input in = parse_mesh_argument(argument);
+    const std::optional<Mesh_input> parsed = parse_mesh_argument(argument);
+    if(!parsed) {
+      std::cerr << "unknown suffix in " << argument << " (@loopN, @sliversN, @needlesN)\n";
+      failures = true;
+      continue;
+    }
+    const Mesh_input& in = *parsed;
     Mesh mesh;
     if(!CGAL::IO::read_polygon_mesh(in.file, mesh) || mesh.is_empty()) {
       std::cerr << "cannot read " << in.file << '\n';
@@ -669,6 +690,9 @@ int main(int argc, char** argv)
     }
     if(in.loops > 0)
       CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(in.loops));
+    std::mt19937 random(1);  // the same faces in every run
+    mesh_defects::add_slivers(mesh, in.slivers, 1e-6, random);
+    mesh_defects::add_needles(mesh, in.needles, 1e-6, 1e-7, random);
     mesh.collect_garbage();  // contiguous vertex indices for the Laplacian
 
     std::string failure;

@@ -2,12 +2,15 @@
 # Builds the benchmark in Release and runs it over CGAL's sample meshes; writes
 # benchmark/results/latest.csv and latest.json, then the plots (see README.md).
 #
-# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--energies LIST]
+# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--defects] [--energies LIST]
 #                                   [--pipeline robust|paper] [--data DIR] [--build-dir DIR]
 #   --quick          only the meshes under 15k faces, 1 repeat each
 #   --full           also bunny00 Loop-subdivided once (300k faces) and twice (1.2M faces)
 #   --large          instead, 15 other meshes Loop-subdivided to 90k-260k faces, 1 repeat,
 #                    Combined unless --energies; results in benchmark/results/large/
+#   --defects        instead, meshes with nearly degenerate faces added (MESH@sliversN,
+#                    MESH@needlesN), 1 repeat, Combined unless --energies; results in
+#                    benchmark/results/defects/
 #   --energies LIST  comma-separated, default tutte,dirichlet,combined
 #   --pipeline P     robust (default) or paper
 #   --data DIR       a folder holding the .off meshes; default: CGAL's data tarball
@@ -22,6 +25,7 @@ root="$(cd "$here/.." && pwd)"
 quick=0
 full=0
 large=0
+defects=0
 energies=""
 pipeline="robust"
 data=""
@@ -31,6 +35,7 @@ while [ $# -gt 0 ]; do
     --quick) quick=1 ;;
     --full) full=1 ;;
     --large) large=1 ;;
+    --defects) defects=1 ;;
     --energies) energies="$2"; shift ;;
     --pipeline) pipeline="$2"; shift ;;
     --data) data="$2"; shift ;;
@@ -48,8 +53,16 @@ corpus=(hand blobby triceratops cow retinal homer bull camel bear fandisk_large 
 large_corpus=(cow@loop2 triceratops@loop2 bear@loop1 retinal@loop2 dino@loop2 fandisk_large@loop1 man@loop1
               hand@loop3 homer@loop2 diplodocus@loop1 bull@loop2 ellipe0.003@loop3 fandisk@loop2
               armadillo@loop1 blobby@loop3)
+# Slivers and near-duplicate vertices (see mesh_defects.h), at corpus and held-out sizes.
+defects_corpus=(cow@needles50 triceratops@needles50 bull@slivers50 man@slivers50 cow@loop2@needles200
+                bull@loop2@slivers200 man@loop1@needles100)
 if [ "$large" = 1 ]; then
   corpus=("${large_corpus[@]}")
+  : "${energies:=combined}"
+fi
+if [ "$defects" = 1 ]; then
+  corpus=("${defects_corpus[@]}")
+  large=1  # the same treatment: every mesh, one repeat
   : "${energies:=combined}"
 fi
 : "${energies:=tutte,dirichlet,combined}"
@@ -66,7 +79,9 @@ if [ -z "$data" ]; then
   fi
   tmp="$(mktemp -d)"
   members=()
-  for m in "${corpus[@]}"; do members+=("data/meshes/${m%@*}.off"); done
+  for m in "${corpus[@]}"; do members+=("data/meshes/${m%%@*}.off"); done
+  # Each file once: tar reports a member named twice as missing.
+  mapfile -t members < <(printf '%s\n' "${members[@]}" | sort -u)
   tar -xzf "$tarball" -C "$tmp" "${members[@]}"
   data="$tmp/data/meshes"
 fi
@@ -81,7 +96,7 @@ off_faces() {
 
 meshes=()
 for m in "${corpus[@]}"; do
-  file="$data/${m%@*}.off"
+  file="$data/${m%%@*}.off"
   case "$m" in *@*) subdivision="@${m#*@}" ;; *) subdivision="" ;; esac
   if [ ! -f "$file" ]; then
     echo "missing $file, skipped" >&2
@@ -112,7 +127,7 @@ binary="$build_dir/bin/benchmark"
 
 # Run.
 results="$here/results"
-if [ "$large" = 1 ]; then results="$results/large"; fi
+if [ "$defects" = 1 ]; then results="$results/defects"; elif [ "$large" = 1 ]; then results="$results/large"; fi
 mkdir -p "$results"
 args=(--energies "$energies" --pipeline "$pipeline" --csv "$results/latest.csv" --json "$results/latest.json")
 if [ "$quick" = 1 ] || [ "$large" = 1 ]; then args+=(--repeats 1); fi

@@ -18,6 +18,7 @@
 #include <CGAL/Spherical_parameterization/measure_distortion.h>
 
 #include "test_support.h"
+#include "../benchmark/mesh_defects.h"
 
 #include <Eigen/Core>
 
@@ -443,37 +444,18 @@ double smallest_angle_degrees(const Mesh& mesh)
   return smallest;
 }
 
-/// `count` faces, chosen at random, each split in three at the point `place(a, b, c)` of its
-/// corners.
-Mesh with_split_faces(const Mesh& mesh, int count, const std::function<Point(const Point&, const Point&, const Point&)>& place)
+Mesh with_slivers(const Mesh& mesh, int count, double height)
 {
   Mesh copy = mesh;
-  std::vector<Mesh::Face_index> faces(copy.faces().begin(), copy.faces().end());
-  std::shuffle(faces.begin(), faces.end(), rng);
-  for(int i = 0; i < count && i < int(faces.size()); ++i) {
-    const auto h = copy.halfedge(faces[i]);
-    const Point a = copy.point(copy.source(h)), b = copy.point(copy.target(h)), c = copy.point(copy.target(copy.next(h)));
-    const Vertex v = copy.target(CGAL::Euler::add_center_vertex(h, copy));
-    copy.point(v) = place(a, b, c);
-  }
+  mesh_defects::add_slivers(copy, count, height, rng);
   return copy;
 }
 
-/// Faces split at a point `height` (relative) above the midpoint of one of their edges:
-/// slivers of tiny area, as CAD tessellations and cleaned-up scans have.
-Mesh with_slivers(const Mesh& mesh, int count, double height)
-{
-  return with_split_faces(mesh, count, [height](const Point& a, const Point& b, const Point& c) {
-    const Point middle = CGAL::midpoint(a, b);
-    return middle + height * (c - middle);
-  });
-}
-
-/// Faces split at a point `distance` (relative) from a corner, on an edge but for rounding:
-/// a near-duplicate vertex, as welding leaves, and two needles.
 Mesh with_needles(const Mesh& mesh, int count, double distance)
 {
-  return with_split_faces(mesh, count, [distance](const Point& a, const Point&, const Point& c) { return a + distance * (c - a); });
+  Mesh copy = mesh;
+  mesh_defects::add_needles(copy, count, distance, 0, rng);
+  return copy;
 }
 
 /// A valid map, on its own points, with the default parameters.
