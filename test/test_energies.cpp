@@ -708,14 +708,15 @@ void test_mollified_triangles()
          "rel. err. " + str(planar_error));
 
   // Needles (a near-duplicate vertex, collinear up to rounding) and slivers: one length added
-  // to the three edges, which gives the triangle inequalities exactly the margin.
+  // to the three edges, the smallest that gives the minimum relative height.
   const Vector a(0.3, -0.2, 0.1), b(1.7, 0.4, -0.5), c(0.2, 1.1, 0.9);
   const std::vector<std::array<Vector, 3>> thin{
     {a, a + 1e-9 * (b - a), b},                            // collinear but for rounding
     {a, a + 1e-6 * (b - a) + 1e-7 * (c - a), c},           // a needle
     {a, b, 0.5 * (a + b) + 1e-8 * (c - 0.5 * (a + b))},    // a sliver
-    {a, b, 0.5 * (a + b)}};                                // collinear
-  double added_spread = 0, margin_error = 0;
+    {a, b, 0.5 * (a + b)},                                 // collinear
+    {a, b, 0.5 * (a + b) + 0.01 * (c - 0.5 * (a + b))}};   // thin, not degenerate
+  double added_spread = 0, height_error = 0;
   bool fat_enough = true;
   for(const auto& t : thin) {
     const SP::Reference_triangle r = I::mollified_triangle(t[0], t[1], t[2]);
@@ -723,17 +724,16 @@ void test_mollified_triangles()
     const std::array<double, 3> lm = edge_lengths(r);
     const double added = lm[0] - l[0], longest = *std::max_element(lm.begin(), lm.end());
     added_spread = std::max({added_spread, std::abs(lm[1] - l[1] - added) / longest, std::abs(lm[2] - l[2] - added) / longest});
-    const double margin = lm[0] + lm[1] + lm[2] - 2 * longest;
-    margin_error = std::max(margin_error, std::abs(margin / longest - I::reference_margin) / I::reference_margin);
+    const double height = 2 * r.area / (longest * longest);
+    height_error = std::max(height_error, std::abs(height - I::minimum_relative_height) / I::minimum_relative_height);
     const double angles = r.angles[0] + r.angles[1] + r.angles[2];
-    fat_enough = fat_enough && added > 0 && r.area > 0 && std::abs(angles - M_PI) < 1e-12 &&
-                 *std::min_element(r.angles.begin(), r.angles.end()) > 1e-4;
+    fat_enough = fat_enough && added > 0 && std::abs(angles - M_PI) < 1e-12;
   }
   report("mollified_triangle adds one length to the three edges of thin triangles (rel 1e-12)", added_spread <= 1e-12,
          "rel. spread " + str(added_spread));
-  report("mollified_triangle gives thin triangles the margin reference_margin * longest edge (rel 1e-6)",
-         margin_error <= 1e-6, "rel. err. " + str(margin_error));
-  report("mollified_triangle of thin triangles: positive area, angles over 1e-4 summing to pi", fat_enough);
+  report("mollified_triangle gives thin triangles exactly the minimum relative height (rel 1e-9)", height_error <= 1e-9,
+         "rel. err. " + str(height_error));
+  report("mollified_triangle of thin triangles: a positive added length, angles summing to pi", fat_enough);
 }
 
 int main()

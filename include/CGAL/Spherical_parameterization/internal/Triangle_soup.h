@@ -22,46 +22,65 @@ namespace internal {
 using Points = std::vector<Eigen::Vector3d>;
 using Faces = std::vector<std::array<int, 3>>;
 
+/// The area of a triangle with edge lengths `l`, by Kahan's form of Heron's formula,
+/// accurate for needles; 0 if the lengths break the triangle inequalities.
+inline double triangle_area(const std::array<double, 3>& l)
+{
+  std::array<double, 3> s = l;
+  std::sort(s.begin(), s.end(), std::greater<double>());
+  const double product = (s[0] + (s[1] + s[2])) * (s[2] - (s[0] - s[1])) * (s[2] + (s[0] - s[1])) * (s[0] + (s[1] - s[2]));
+  return 0.25 * std::sqrt(std::max(product, 0.0));
+}
+
+/// The height of a triangle with edge lengths `l` over its longest edge, relative to that edge.
+inline double relative_height(const std::array<double, 3>& l)
+{
+  const double longest = std::max({l[0], l[1], l[2]});
+  return 2 * triangle_area(l) / (longest * longest);
+}
+
 /// The triangle of the plane with edge lengths `l` (edge `i` opposite vertex `i`), which
 /// satisfy the triangle inequalities.
 inline Reference_triangle planar_triangle(const std::array<double, 3>& l)
 {
-  // The area by Kahan's form of Heron's formula, accurate for needles.
-  std::array<double, 3> s = l;
-  std::sort(s.begin(), s.end(), std::greater<double>());
-  const double product = (s[0] + (s[1] + s[2])) * (s[2] - (s[0] - s[1])) * (s[2] + (s[0] - s[1])) * (s[0] + (s[1] - s[2]));
-  const double area = 0.25 * std::sqrt(std::max(product, 0.0));
   const double along = (l[2] * l[2] + l[1] * l[1] - l[0] * l[0]) / (2 * l[2]);  // vertex 2 over edge 0-1
-  return Reference_triangle(Eigen::Vector3d::Zero(), Eigen::Vector3d(l[2], 0, 0), Eigen::Vector3d(along, 2 * area / l[2], 0));
+  return Reference_triangle(Eigen::Vector3d::Zero(), Eigen::Vector3d(l[2], 0, 0),
+                            Eigen::Vector3d(along, 2 * triangle_area(l) / l[2], 0));
 }
 
-/// The smallest margin by which a reference triangle's two shorter edges exceed its longest,
-/// relative to the longest (`mollified_triangle()`); a sliver with its apex over the middle of
-/// its longest edge has that margin at a height of 2.2% of that edge.
-constexpr double reference_margin = 1e-3;
+/// The smallest `relative_height()` of a reference triangle (`mollified_triangle()`).
+constexpr double minimum_relative_height = 0.02;
 
-/// The triangle `(p, q, r)`, or, if its triangle inequalities hold with a margin under
-/// `reference_margin` times its longest edge, the planar triangle whose edge lengths are its
-/// own plus the length that makes the margin that: Sharp and Crane's intrinsic mollification
-/// (2020), per face. Nearly degenerate input faces (needles by near-duplicate vertices,
-/// slivers) otherwise give the area and MIPS terms weights of 1e10 and more, against which
-/// no valid map was found (cow with 50 needles: 4 degenerate faces left, energy 8070; with
-/// the margin, valid, 54.29 against the clean cow's 54.24). Per face, not the same length
-/// added to every edge of the mesh as they do: the energies sum terms of each face with its
-/// own reference triangle, so lengths need not agree between faces, and small fair faces of
-/// a graded mesh stay as they are. Faces with that margin keep their shape exactly.
+/// The triangle `(p, q, r)`, or, if its height over its longest edge is under
+/// `minimum_relative_height` of that edge, the planar triangle whose edge lengths are its own
+/// plus the smallest length that gives it that height: Sharp and Crane's intrinsic
+/// mollification (2020), per face. Nearly degenerate input faces (needles by near-duplicate
+/// vertices, slivers) otherwise give the area and MIPS terms weights of 1e10 and more, against
+/// which no valid map was found (cow with 50 needles: 4 degenerate faces left, energy 8070;
+/// with the minimum height, valid, 54.26 against the clean cow's 54.24).
+/// - Per face, not one length added to every edge of the mesh as they do: the energies sum
+///   terms of each face with its own reference triangle, so lengths need not agree between
+///   faces, and small fair faces of a graded mesh stay as they are.
+/// - A minimum height, not their minimum margin in the triangle inequalities: a margin of
+///   1e-3 gave slivers a height of 2.2% but needles 0.1%, whose tiny area still raised their
+///   barrier's activation (`Fold_barrier::face_activation()`) and pushed protrusions open
+///   (man with 100 needles after one Loop subdivision: not converged, 125 s; now 43 s, at
+///   the clean mesh's energy).
+/// Faces with that height keep their exact shape.
 inline Reference_triangle mollified_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r)
 {
-  std::array<double, 3> l{(q - r).norm(), (r - p).norm(), (p - q).norm()};
-  const double longest = std::max({l[0], l[1], l[2]});
-  const double margin = l[0] + l[1] + l[2] - 2 * longest;
-  if(margin >= reference_margin * longest)
+  const std::array<double, 3> l{(q - r).norm(), (r - p).norm(), (p - q).norm()};
+  if(relative_height(l) >= minimum_relative_height)
     return Reference_triangle(p, q, r);
-  // margin + added = reference_margin * (longest + added)
-  const double added = (reference_margin * longest - margin) / (1 - reference_margin);
-  for(double& length : l)
-    length += added;
-  return planar_triangle(l);
+  auto added = [&l](double length) { return std::array<double, 3>{l[0] + length, l[1] + length, l[2] + length}; };
+  // The height grows with the added length; adding the longest edge makes every edge at
+  // least half the longest, a fat triangle (relative height over 0.4).
+  double thin = 0, fat = std::max({l[0], l[1], l[2]});
+  for(int i = 0; i < 60; ++i) {
+    const double middle = 0.5 * (thin + fat);
+    (relative_height(added(middle)) < minimum_relative_height ? thin : fat) = middle;
+  }
+  return planar_triangle(added(fat));
 }
 
 /// The input mesh as arrays, the form the solver works on. Faces are oriented outward
