@@ -24,20 +24,17 @@ namespace internal {
 /// The faces `(u, p, q)` around a vertex `u`, as the pairs `(p, q)`.
 using Fan = std::vector<std::array<int, 2>>;
 
-/// The height of the face `(x, a, b)` of the unit sphere over its edge `ab`, relative to that
-/// edge: `det(x, a, b) / |a - b|^2` (negative if the face is flipped).
-inline double face_clearance(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
-{
-  return x.dot((a - x).cross(b - x)) / (a - b).squaredNorm();
-}
-
-/// How well `x` sees the fan's far edges: the smallest `face_clearance()` over the fan
-/// (negative if some face `(x, p, q)` is flipped).
+/// How well `x` sees the fan's far edges: the smallest `det(x, p, q) / |p - q|^2` over the
+/// fan, the height of each face over its far edge relative to that edge (negative if some
+/// face `(x, p, q)` is flipped).
 inline double fan_clearance(const Eigen::Vector3d& x, const Points& points, const Fan& fan)
 {
   double smallest = std::numeric_limits<double>::infinity();
-  for(const auto& [p, q] : fan)
-    smallest = std::min(smallest, face_clearance(x, points[p], points[q]));
+  for(const auto& [p, q] : fan) {
+    const Eigen::Vector3d &a = points[p], &b = points[q];
+    const double det = x.dot((a - x).cross(b - x));
+    smallest = std::min(smallest, det / (a - b).squaredNorm());
+  }
   return smallest;
 }
 
