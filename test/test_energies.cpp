@@ -257,6 +257,18 @@ void test_energies()
     smallest = std::min(smallest, energy_errors(barrier, false, obtuse, 12).smallest);
   report("Fold_barrier with activation 0.5 is active (positive) on the test triangles", smallest > 0,
          "smallest value " + str(smallest));
+
+  // With the outer layer, reaching out to 3 x 0.2 = 0.6: active on all the test triangles
+  // (t < 0.5), the barrier itself on some of them, so that both parts are checked.
+  SP::internal::Fold_barrier layered;
+  layered.activation = 0.2;
+  layered.outer_weight = 0.5;
+  check_energy("Fold_barrier activation=0.2 with an outer layer", layered);
+  smallest = std::numeric_limits<double>::infinity();
+  for(bool obtuse : {false, true})
+    smallest = std::min(smallest, energy_errors(layered, false, obtuse, 12).smallest);
+  report("Fold_barrier's outer layer is active (positive) on the test triangles", smallest > 0,
+         "smallest value " + str(smallest));
 }
 
 /// The untangling energy must be finite, with exact derivatives, on folded (det < 0) faces.

@@ -30,6 +30,11 @@ namespace internal {
 struct Fold_barrier
 {
   double activation = 1e-7;
+  /// The weight of the weak outer layer (see `energy()`), 0 for none.
+  double outer_weight = 0;
+
+  /// How far the outer layer reaches, in multiples of the activation.
+  static constexpr double outer_reach = 3;
 
   /// The chord determinant the barrier defends on faces of tiny input area, 100 times the
   /// degeneracy threshold of the validity contract (`degenerate_determinant`). The relative
@@ -59,7 +64,7 @@ struct Fold_barrier
   template <class Number>
   Number flat_energy(const Chord_triangle<Number>& t, const Face_data& d) const
   {
-    return energy(t, d, activation);
+    return energy(t, d, activation, outer_weight);
   }
 
   /// `t` of the face, for a positively oriented chord triangle.
@@ -70,13 +75,31 @@ struct Fold_barrier
     return det * det * inverse(t.spring(d.weights)) * (0.25 / d.input_area);
   }
 
+  /// The barrier, plus with `outer_weight` a second one of that weight relative to the
+  /// input area, activated at `outer_reach` times `activation`. The clamped barrier has no
+  /// curvature at its activation, so the Newton model does not see a face coming down to it
+  /// until it is there; steps that would fold faces above it are capped instead, to a few
+  /// percent of Newton's in the squeezed protrusions. The weak layer lets the model see them
+  /// one step earlier without changing the minimum much (see the fold-free continuation in
+  /// `Spherical_parameterizer_3`).
   template <class Number>
-  static Number energy(const Chord_triangle<Number>& t, const Face_data& d, double activation)
+  static Number energy(const Chord_triangle<Number>& t, const Face_data& d, double activation, double outer_weight = 0)
   {
     const Number det = t.determinant();
     if(!(value_of(det) > 0))
       return Number(std::numeric_limits<double>::infinity());
-    const Number u = scale(t, det, d) * (1 / face_activation(d, activation));
+    const Number s = scale(t, det, d);
+    Number e = clamped_log(s * (1 / face_activation(d, activation))) * face_weight(d, activation);
+    if(outer_weight > 0)
+      e += clamped_log(s * (1 / (outer_reach * activation))) * (outer_weight * d.input_area);
+    return e;
+  }
+
+private:
+  // b(u) = -(1 - u)^2 log(u) for 0 < u < 1, 0 from 1 on, +inf at 0 and under.
+  template <class Number>
+  static Number clamped_log(const Number& u)
+  {
     const double v = value_of(u);
     if(v >= 1)
       return Number(0.0);
@@ -86,7 +109,7 @@ struct Fold_barrier
     const double b = -w * w * l;
     const double d1 = 2 * w * l - w * w / v;
     const double d2 = -2 * l + 4 * w / v + w * w / (v * v);
-    return chain(u, b, d1, d2) * face_weight(d, activation);
+    return chain(u, b, d1, d2);
   }
 };
 

@@ -65,6 +65,8 @@ struct Newton_options
   /// The barrier's activation under which every face is held (`Fold_barrier::scale`,
   /// about half the area ratio): the floor of the map's area distortion.
   double fold_floor = 1e-7;
+  /// With `keep_fold_free`: the weight of the barrier's weak outer layer (`Fold_barrier::energy()`).
+  double outer_barrier_weight = 0;
   bool stop_when_fold_free = false;  ///< a start-up stage: stop at the first fold-free map
   /// When set, receives the last iterate (or the start) on which every face is positively
   /// oriented: where a fold-free stage can take over after a stage that may fold.
@@ -162,6 +164,7 @@ public:
     Newton_outcome out;
     with_barrier_ = options.keep_fold_free;
     floor_ = options.fold_floor;
+    outer_weight_ = options.outer_barrier_weight;
     first_shift_ = options.first_shift;
     boost_search_ = options.boost_search;
     double e = total_energy(energy, x);
@@ -447,7 +450,8 @@ private:
   Number barrier(std::size_t f, const Points& x) const
   {
     const auto& t = (*faces_)[f];
-    return Fold_barrier::energy(Chord_triangle<Number>(x[t[0]], x[t[1]], x[t[2]]), barrier_data_[f], floor_);
+    return Fold_barrier::energy(Chord_triangle<Number>(x[t[0]], x[t[1]], x[t[2]]), barrier_data_[f], floor_,
+                                outer_weight_);
   }
 
   void build_pattern()
@@ -747,6 +751,7 @@ private:
   bool with_barrier_ = false;
   std::vector<Fold_barrier::Face_data> barrier_data_;
   double floor_ = 0;  // the barrier's activation
+  double outer_weight_ = 0;
   Matrix matrix_;
   std::vector<int> entry_index_;
   std::vector<int> diagonal_index_;
