@@ -304,7 +304,13 @@ private:
     const std::size_t max_iterations = run.options.max_iterations;
     if(!optimistic)
       run.options.max_iterations = std::min(max_iterations, smoothing);
+    // The input after a level whose optimistic stage was rejected: a fold that lasts three
+    // iterates will not come undone either (see `input_max_folded_iterations`).
+    const std::size_t max_folded = run.options.max_folded_iterations;
+    if(&level == &input_ && run.optimistic_stage_rejected)
+      run.options.max_folded_iterations = std::min(max_folded, input_max_folded_iterations);
     const bool uninterrupted = minimize(energy_, stage, false, run, level, x, visitor);
+    run.options.max_folded_iterations = max_folded;
     run.options.max_iterations = max_iterations;
     run.options.smoothing_iterations = 0;
     run.options.coarse_correction = nullptr;
@@ -691,9 +697,23 @@ private:
   // the held faces' projected Hessians cost 20% per iteration, and bunny00 Dirichlet took
   // 33 -> 62 iterations, its coarser levels ending in another basin. The weights were
   // chosen with that whole-range layer on man, dino, bull and diplodocus (doc/NOTES.md,
-  // session 34), not tuned again for reach 3.
+  // session 34) and checked again for reach 3 on the same four (session 35): level weight
+  // 1e-1, input weight 3e-2 or 3e-3, reach 1.5 all took more iterations (383 -> 390 to
+  // 454); reach 5 or 10 fewer (362) but sent bunny00 Dirichlet to a higher minimum (1.4 ->
+  // 7.2 s).
   static constexpr double level_outer_barrier_weight = 3e-2;
   static constexpr double input_outer_barrier_weight = 1e-2;
+  // The folded iterates in a row after which the input's optimistic stage stops, after a
+  // level whose own optimistic stage was rejected (elsewhere `Newton_options`' 5). There the
+  // input's stage folds from its first iterate on the protrusion meshes and its iterations
+  // are thrown away. Measured, one run each side by side: at 90k to 280k faces, Combined,
+  // bull@loop2 110 -> 106 iterations (15.0 -> 12.9 s), cow@loop2 78 -> 75 (7.0 -> 5.6 s),
+  // man@loop1 105 -> 103, 79.0 -> 74.8 s over the 5 meshes that changed; the corpus
+  // (14 x 3) 2252 -> 2234 iterations, 60.7 -> 58.0 s, all energies within 2.3e-6, camel
+  // Tutte the one slower run (91 -> 116). Smooth meshes, whose optimistic stage may pass
+  // through 3 or 4 folded iterates and end fold-free (session 23), seldom reach the input
+  // with a rejected level, and none of the corpus did.
+  static constexpr std::size_t input_max_folded_iterations = 2;
   // The rings around the faces under the floor that the floor patch frees (`lift_locally()`).
   static constexpr int patch_rings = 3;
   static constexpr std::size_t deep_lift_iterations = 40;  // see `lift_deep_faces()`
