@@ -802,6 +802,36 @@ void test_allocated_factor(const Sparse_matrix& m, const Eigen::VectorXd& b, con
            std::string(indefinite_refused ? "yes" : "no") + ", largest difference to the usual factor " + str(difference),
          indefinite_refused && difference == 0);
 }
+
+/// `Vertex_ordered_cholmod::order_ahead()`: the matrix handed to CHOLMOD already in the
+/// factor's order gives the same solution, bit for bit, as CHOLMOD permuting it itself, and
+/// an indefinite matrix is still refused.
+void test_order_ahead(const Sparse_matrix& m, const Eigen::VectorXd& b)
+{
+  SP::internal::Vertex_ordered_cholmod<Sparse_matrix> usual, ahead;
+  for(auto* cholmod : {&usual, &ahead}) {
+    cholmod->cholmod().print = 0;
+    cholmod->cholmod().supernodal = CHOLMOD_SUPERNODAL;
+    cholmod->analyze_pattern_by_vertices(m);
+  }
+  const bool ordered = ahead.order_ahead(m);
+  usual.factorize(m);
+  const Eigen::VectorXd expected = usual.solve(b);
+  ahead.factorize_in_order(indefinite_copy(m));
+  const bool indefinite_refused = ahead.info() != Eigen::Success;
+  ahead.factorize_in_order(m);
+  const double difference = ahead.info() == Eigen::Success ? (ahead.solve_in_order(b) - expected).cwiseAbs().maxCoeff()
+                                                          : std::numeric_limits<double>::infinity();
+  report("[order ahead] supernodal factor given its matrix in order: " + std::string(ordered ? "yes" : "no") +
+           ", indefinite matrix refused: " + (indefinite_refused ? "yes" : "no") +
+           ", largest difference to CHOLMOD's own permutation " + str(difference),
+         ordered && indefinite_refused && usual.info() == Eigen::Success && difference == 0);
+  SP::internal::Vertex_ordered_cholmod<Sparse_matrix> simplicial;
+  simplicial.cholmod().print = 0;
+  simplicial.cholmod().supernodal = CHOLMOD_SIMPLICIAL;
+  simplicial.analyzePattern(m);
+  report("[order ahead] refused for a simplicial factor", !simplicial.order_ahead(m));
+}
 #endif
 
 /// `Background_task`: with `Parallel_tag` the task runs on another thread before `wait()`
@@ -859,8 +889,10 @@ void test_cholmod_traits()
     report(name + " indefinite matrix refused: " + (indefinite_refused ? "yes" : "no") + ", relative residual " +
              str(residual),
            indefinite_refused && residual < 1e-10);
-    if(supernodal && factored)
+    if(supernodal && factored) {
       test_allocated_factor(m, b, solver.solve(b));
+      test_order_ahead(m, b);
+    }
   }
 #else
   skip("[Cholmod_traits]", "built without CHOLMOD");
