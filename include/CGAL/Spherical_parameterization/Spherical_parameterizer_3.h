@@ -478,17 +478,18 @@ private:
   template <class Visitor>
   bool solve_coarse_to_fine(Run& run, internal::Points& x, Visitor& visitor)
   {
-    const bool small = input_.number_of_vertices() <= 2 * coarse_vertices;  // no gain in a hierarchy
-    hierarchy(small ? input_.number_of_vertices() : coarse_vertices);
-    // Only the input level needs the input's solver (its pattern and symbolic analysis, 1 s
-    // at 300k faces, mostly METIS) and the memory of its first assembly and factorization
+    // Only the input level needs the input's solver (its pattern and symbolic analysis, 0.7 s
+    // at 302k faces, mostly METIS) and the memory of its first assembly and factorization
     // (fresh memory is slow on virtual machines): both are made on another core while the
-    // coarser levels run. At 302k faces the levels then start after the hierarchy (0.45 s)
-    // instead of after the analysis (1 s): 5.02 -> 4.64 s.
+    // hierarchy is built (on one core, 0.45 s at 302k faces) and the coarser levels run.
+    // Started after the hierarchy, the input level waited 0.4 to 0.7 s for them at 302k faces
+    // (3.94 / 3.72 -> 3.29 / 2.99 s, alternated runs).
     internal::Background_task<ConcurrencyTag> input_solver([this] {
       make_input_solver();
       input_.solver->prepare_memory();
     });
+    const bool small = input_.number_of_vertices() <= 2 * coarse_vertices;  // no gain in a hierarchy
+    hierarchy(small ? input_.number_of_vertices() : coarse_vertices);
     const bool two_grid = input_.number_of_vertices() > two_grid_vertices;  // see minimize_level()
     internal::Coarse_to_fine<Newton> levels(input_.soup, *hierarchy_, level_ratio, two_grid);
     const internal::Coarse_correction coarse_correction = [&levels](const auto& map, const auto& gradient, auto& step) {
