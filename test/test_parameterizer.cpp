@@ -826,6 +826,21 @@ void test_order_ahead(const Sparse_matrix& m, const Eigen::VectorXd& b)
            ", indefinite matrix refused: " + (indefinite_refused ? "yes" : "no") +
            ", largest difference to CHOLMOD's own permutation " + str(difference),
          ordered && indefinite_refused && usual.info() == Eigen::Success && difference == 0);
+  // Both triangles stored (outside the concept, which stores the lower one): CHOLMOD reads the
+  // lower one only, and the permuted copy keeps only that one.
+  const Sparse_matrix full = m.selfadjointView<Eigen::Lower>();
+  SP::internal::Vertex_ordered_cholmod<Sparse_matrix> ahead_full;
+  ahead_full.cholmod().print = 0;
+  ahead_full.cholmod().supernodal = CHOLMOD_SUPERNODAL;
+  ahead_full.analyze_pattern_by_vertices(full);
+  const bool full_ordered = ahead_full.order_ahead(full);
+  ahead_full.factorize_in_order(full);
+  const double full_difference = ahead_full.info() == Eigen::Success
+                                   ? (ahead_full.solve_in_order(b) - expected).cwiseAbs().maxCoeff()
+                                   : std::numeric_limits<double>::infinity();
+  report("[order ahead] a matrix with both triangles: ordered " + std::string(full_ordered ? "yes" : "no") +
+           ", largest difference " + str(full_difference),
+         full_ordered && full_difference == 0);
   SP::internal::Vertex_ordered_cholmod<Sparse_matrix> simplicial;
   simplicial.cholmod().print = 0;
   simplicial.cholmod().supernodal = CHOLMOD_SIMPLICIAL;

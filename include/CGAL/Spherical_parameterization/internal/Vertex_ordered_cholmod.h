@@ -179,22 +179,26 @@ private:
     std::vector<int> rank(std::size_t(n), 0);
     for(std::size_t k = 0; k < permutation.size(); ++k)
       rank[std::size_t(permutation[k])] = int(k);
-    permuted.resize(n, n);
-    permuted.resizeNonZeros(m.nonZeros());
-    int* outer = permuted.outerIndexPtr();
-    std::fill(outer, outer + n + 1, 0);
-    const auto for_each_entry = [&](auto fn) {  // fn(row, column, index in m), in P m P^T's lower triangle
+    // fn(row, column, index in m) for each entry of m's lower triangle (CHOLMOD reads no
+    // other), at its place in P m P^T's lower triangle
+    const auto for_each_entry = [&](auto fn) {
       for(Eigen::Index j = 0; j < n; ++j)
-        for(typename Matrix::InnerIterator it(m, j); it; ++it) {
-          const int r = rank[std::size_t(it.row())], c = rank[std::size_t(j)];
-          fn(std::max(r, c), std::min(r, c), int(&it.value() - m.valuePtr()));
-        }
+        for(typename Matrix::InnerIterator it(m, j); it; ++it)
+          if(it.row() >= j) {
+            const int r = rank[std::size_t(it.row())], c = rank[std::size_t(j)];
+            fn(std::max(r, c), std::min(r, c), int(&it.value() - m.valuePtr()));
+          }
     };
-    for_each_entry([&](int, int column, int) { ++outer[column + 1]; });
+    std::vector<int> count(std::size_t(n) + 1, 0);
+    for_each_entry([&](int, int column, int) { ++count[std::size_t(column) + 1]; });
     for(Eigen::Index j = 0; j < n; ++j)
-      outer[j + 1] += outer[j];
+      count[std::size_t(j) + 1] += count[std::size_t(j)];
+    permuted.resize(n, n);
+    permuted.resizeNonZeros(count.back());
+    int* outer = permuted.outerIndexPtr();
+    std::copy(count.begin(), count.end(), outer);
     int* inner = permuted.innerIndexPtr();
-    source.resize(std::size_t(m.nonZeros()));
+    source.resize(std::size_t(count.back()));
     std::vector<int> next(outer, outer + n);
     for_each_entry([&](int row, int column, int index) {
       const int k = next[std::size_t(column)]++;
@@ -210,7 +214,7 @@ private:
       for(int k = outer[j]; k < outer[j + 1]; ++k)
         std::tie(inner[k], source[std::size_t(k)]) = column[std::size_t(k - outer[j])];
     }
-    std::fill(permuted.valuePtr(), permuted.valuePtr() + m.nonZeros(), 0.0);
+    std::fill(permuted.valuePtr(), permuted.valuePtr() + permuted.nonZeros(), 0.0);
   }
 
   // METIS on the graph of the 2x2 blocks, each vertex then expanded to its two unknowns.
