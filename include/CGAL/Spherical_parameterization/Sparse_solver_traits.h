@@ -68,8 +68,8 @@ private:
 /// Every supernodal factor is given its matrix already in its order: the values are copied
 /// into a permuted matrix kept for that, where CHOLMOD would transpose the lower triangle twice
 /// into fresh memory at each factorization. The factor is the same, bit for bit; held-out
-/// meshes at 100k to 300k faces ran 2 to 5% faster (bull@loop2 12.72 -> 12.14 s, medians of
-/// 3), and the copy adds about 165 MB to the peak at 1.2M faces.
+/// meshes at 100k to 300k faces ran 2 to 5% faster (bull subdivided twice, 198k faces: 12.72 ->
+/// 12.14 s, medians of 3), and the copy adds about 165 MB to the peak at 1.2M faces.
 /// When the BLAS is OpenBLAS, its factorizations and solves run on one BLAS thread less than
 /// the cores (one on two cores; the count is restored after each): OpenBLAS's spinning
 /// threads slow down badly when another process holds a core. Define `CGAL_SPHERICAL_PARAMETERIZATION_KEEP_BLAS_THREADS` to keep
