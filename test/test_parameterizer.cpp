@@ -808,12 +808,14 @@ void test_allocated_factor(const Sparse_matrix& m, const Eigen::VectorXd& b, con
 /// an indefinite matrix is still refused.
 void test_order_ahead(const Sparse_matrix& m, const Eigen::VectorXd& b)
 {
+  const auto analyse = [](SP::internal::Vertex_ordered_cholmod<Sparse_matrix>& cholmod, const Sparse_matrix& matrix) {
+    cholmod.cholmod().print = 0;
+    cholmod.cholmod().supernodal = CHOLMOD_SUPERNODAL;
+    cholmod.analyze_pattern_by_vertices(matrix);
+  };
   SP::internal::Vertex_ordered_cholmod<Sparse_matrix> usual, ahead;
-  for(auto* cholmod : {&usual, &ahead}) {
-    cholmod->cholmod().print = 0;
-    cholmod->cholmod().supernodal = CHOLMOD_SUPERNODAL;
-    cholmod->analyze_pattern_by_vertices(m);
-  }
+  analyse(usual, m);
+  analyse(ahead, m);
   const bool ordered = ahead.order_ahead(m);
   usual.factorize(m);
   const Eigen::VectorXd expected = usual.solve(b);
@@ -830,9 +832,7 @@ void test_order_ahead(const Sparse_matrix& m, const Eigen::VectorXd& b)
   // lower one only, and the permuted copy keeps only that one.
   const Sparse_matrix full = m.selfadjointView<Eigen::Lower>();
   SP::internal::Vertex_ordered_cholmod<Sparse_matrix> ahead_full;
-  ahead_full.cholmod().print = 0;
-  ahead_full.cholmod().supernodal = CHOLMOD_SUPERNODAL;
-  ahead_full.analyze_pattern_by_vertices(full);
+  analyse(ahead_full, full);
   const bool full_ordered = ahead_full.order_ahead(full);
   ahead_full.factorize_in_order(full);
   const double full_difference = ahead_full.info() == Eigen::Success

@@ -189,16 +189,14 @@ private:
             fn(std::max(r, c), std::min(r, c), int(&it.value() - m.valuePtr()));
           }
     };
-    std::vector<int> count(std::size_t(n) + 1, 0);
-    for_each_entry([&](int, int column, int) { ++count[std::size_t(column) + 1]; });
-    for(Eigen::Index j = 0; j < n; ++j)
-      count[std::size_t(j) + 1] += count[std::size_t(j)];
-    permuted.resize(n, n);
-    permuted.resizeNonZeros(count.back());
+    permuted.resize(n, n);  // outer indices all 0
     int* outer = permuted.outerIndexPtr();
-    std::copy(count.begin(), count.end(), outer);
+    for_each_entry([&](int, int column, int) { ++outer[column + 1]; });
+    for(Eigen::Index j = 0; j < n; ++j)
+      outer[j + 1] += outer[j];
+    permuted.resizeNonZeros(outer[n]);
     int* inner = permuted.innerIndexPtr();
-    source.resize(std::size_t(count.back()));
+    source.resize(std::size_t(outer[n]));
     std::vector<int> next(outer, outer + n);
     for_each_entry([&](int row, int column, int index) {
       const int k = next[std::size_t(column)]++;
