@@ -10,6 +10,7 @@
 //             [--max-seconds S] [--no-fork] [--json FILE] [--csv FILE] MESH...
 // A MESH ending in "@loopN" (e.g. bunny00.off@loop2) is Loop-subdivided N times after reading;
 // "@sliversN" and "@needlesN" then add N nearly degenerate faces of each kind (mesh_defects.h).
+// "tube:capsuleL" and "tube:helixT" are long tubes built in code (synthetic_shapes.h).
 //
 // Each run is done in a forked child process, so that its peak memory (ru_maxrss of the
 // child) belongs to that run alone; see README.md.
@@ -25,6 +26,7 @@
 #include <CGAL/Spherical_parameterization/internal/solver_threads.h>
 
 #include "mesh_defects.h"
+#include "synthetic_shapes.h"
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -81,7 +83,9 @@ void usage(const char* program)
             << " [--repeats N] [--energies tutte,dirichlet,combined] [--pipeline robust|paper]\n"
                "       [--max-seconds S] [--no-fork] [--json FILE] [--csv FILE] MESH...\n"
                "A MESH path ending in @loopN is Loop-subdivided N times before timing; @sliversN and\n"
-               "@needlesN then split N faces into slivers or needles (e.g. cow.off@needles50).\n";
+               "@needlesN then split N faces into slivers or needles (e.g. cow.off@needles50).\n"
+               "A MESH tube:capsuleL or tube:helixT is built: a straight tube L radii long, or a thin\n"
+               "tube coiled T times (e.g. tube:helix4, 111k faces).\n";
 }
 
 std::vector<std::string> split(const std::string& s, char separator)
@@ -465,6 +469,11 @@ struct Mesh_input
   int needles = 0;   // @needlesN: faces split at 1e-6 of an edge from a corner, 1e-7 off it
 };
 
+/// A MESH starting with this is built in code (synthetic_shapes.h): `tube:capsule150`, `tube:helix4`.
+const std::string tube_prefix = "tube:";
+
+bool is_tube(const std::string& file) { return file.compare(0, tube_prefix.size(), tube_prefix) == 0; }
+
 /// `MESH[@loopN][@sliversN][@needlesN]`; nothing on an unknown suffix.
 std::optional<Mesh_input> parse_mesh_argument(const std::string& argument)
 {
@@ -485,10 +494,23 @@ std::optional<Mesh_input> parse_mesh_argument(const std::string& argument)
     }
   std::string stem = in.file.substr(slash == std::string::npos ? 0 : slash + 1);
   const std::size_t dot = stem.rfind('.');
-  if(dot != std::string::npos && dot > 0)
+  if(is_tube(in.file))
+    stem = in.file.substr(tube_prefix.size());
+  else if(dot != std::string::npos && dot > 0)
     stem = stem.substr(0, dot);
   in.name = stem + (at == std::string::npos ? "" : argument.substr(at));
   return in;
+}
+
+/// Builds a `tube:` mesh, reads any other; false if that gave no mesh.
+bool load_mesh(const std::string& file, Mesh& mesh)
+{
+  if(!is_tube(file))
+    return CGAL::IO::read_polygon_mesh(file, mesh) && !mesh.is_empty();
+  std::optional<Mesh> tube = synthetic_shapes::by_name<Point>(file.substr(tube_prefix.size()));
+  if(tube)
+    mesh = std::move(*tube);
+  return bool(tube);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -683,8 +705,8 @@ int main(int argc, char** argv)
     }
     const Mesh_input& in = *parsed;
     Mesh mesh;
-    if(!CGAL::IO::read_polygon_mesh(in.file, mesh) || mesh.is_empty()) {
-      std::cerr << "cannot read " << in.file << '\n';
+    if(!load_mesh(in.file, mesh)) {
+      std::cerr << (is_tube(in.file) ? "no such shape: " : "cannot read ") << in.file << '\n';
       failures = true;
       continue;
     }

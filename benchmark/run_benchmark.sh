@@ -2,7 +2,7 @@
 # Builds the benchmark in Release and runs it over CGAL's sample meshes; writes
 # benchmark/results/latest.csv and latest.json, then the plots (see README.md).
 #
-# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--defects] [--energies LIST]
+# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--defects] [--tubes] [--energies LIST]
 #                                   [--pipeline robust|paper] [--data DIR] [--build-dir DIR]
 #   --quick          only the meshes under 15k faces, 1 repeat each
 #   --full           also bunny00 Loop-subdivided once (300k faces) and twice (1.2M faces)
@@ -11,6 +11,9 @@
 #   --defects        instead, meshes with nearly degenerate faces added (MESH@sliversN,
 #                    MESH@needlesN), 1 repeat, Combined unless --energies; results in
 #                    benchmark/results/defects/
+#   --tubes          instead, long tubes built by the benchmark (tube:capsuleL, tube:helixT;
+#                    no data needed), 1 repeat, Combined unless --energies; results in
+#                    benchmark/results/tubes/
 #   --energies LIST  comma-separated, default tutte,dirichlet,combined
 #   --pipeline P     robust (default) or paper
 #   --data DIR       a folder holding the .off meshes; default: CGAL's data tarball
@@ -26,6 +29,7 @@ quick=0
 full=0
 large=0
 defects=0
+tubes=0
 energies=""
 pipeline="robust"
 data=""
@@ -36,11 +40,12 @@ while [ $# -gt 0 ]; do
     --full) full=1 ;;
     --large) large=1 ;;
     --defects) defects=1 ;;
+    --tubes) tubes=1 ;;
     --energies) energies="$2"; shift ;;
     --pipeline) pipeline="$2"; shift ;;
     --data) data="$2"; shift ;;
     --build-dir) build_dir="$2"; shift ;;
-    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
     *) echo "unknown option $1" >&2; exit 1 ;;
   esac
   shift
@@ -56,6 +61,9 @@ large_corpus=(cow@loop2 triceratops@loop2 bear@loop1 retinal@loop2 dino@loop2 fa
 # Slivers and near-duplicate vertices (see mesh_defects.h), at corpus and held-out sizes.
 defects_corpus=(cow@needles50 triceratops@needles50 bull@slivers50 man@slivers50 cow@loop2@needles200
                 bull@loop2@slivers200 man@loop1@needles100)
+# Long tubes, straight and coiled, 3k to 111k faces (see synthetic_shapes.h): their energies'
+# infimum squeezes the tube to nothing, so their maps end on the fold barrier's floor.
+tubes_corpus=(tube:capsule10 tube:capsule40 tube:capsule150 tube:helix1 tube:helix2 tube:helix4)
 if [ "$large" = 1 ]; then
   corpus=("${large_corpus[@]}")
   : "${energies:=combined}"
@@ -65,13 +73,20 @@ if [ "$defects" = 1 ]; then
   large=1  # the same treatment: every mesh, one repeat
   : "${energies:=combined}"
 fi
+if [ "$tubes" = 1 ]; then
+  corpus=("${tubes_corpus[@]}")
+  large=1
+  : "${energies:=combined}"
+fi
 : "${energies:=tutte,dirichlet,combined}"
 
 # The meshes.
 tmp=""
 cleanup() { if [ -n "$tmp" ]; then rm -rf "$tmp"; fi; }
 trap cleanup EXIT
-if [ -z "$data" ]; then
+if [ "$tubes" = 1 ]; then
+  data="."  # nothing to read
+elif [ -z "$data" ]; then
   tarball=/usr/share/doc/libcgal-dev/data.tar.gz
   if [ ! -f "$tarball" ]; then
     echo "no $tarball: install the Debian package libcgal-demo, or pass --data DIR" >&2
@@ -96,6 +111,7 @@ off_faces() {
 
 meshes=()
 for m in "${corpus[@]}"; do
+  if [ "$tubes" = 1 ]; then meshes+=("$m"); continue; fi
   file="$data/${m%%@*}.off"
   case "$m" in *@*) subdivision="@${m#*@}" ;; *) subdivision="" ;; esac
   if [ ! -f "$file" ]; then
@@ -127,7 +143,7 @@ binary="$build_dir/bin/benchmark"
 
 # Run.
 results="$here/results"
-if [ "$defects" = 1 ]; then results="$results/defects"; elif [ "$large" = 1 ]; then results="$results/large"; fi
+if [ "$tubes" = 1 ]; then results="$results/tubes"; elif [ "$defects" = 1 ]; then results="$results/defects"; elif [ "$large" = 1 ]; then results="$results/large"; fi
 mkdir -p "$results"
 args=(--energies "$energies" --pipeline "$pipeline" --csv "$results/latest.csv" --json "$results/latest.json")
 if [ "$quick" = 1 ] || [ "$large" = 1 ]; then args+=(--repeats 1); fi
