@@ -85,7 +85,7 @@ void usage(const char* program)
                "A MESH path ending in @loopN is Loop-subdivided N times before timing; @sliversN and\n"
                "@needlesN then split N faces into slivers or needles (e.g. cow.off@needles50).\n"
                "A MESH tube:capsuleL or tube:helixT is built: a straight tube L radii long, or a thin\n"
-               "tube coiled T times (e.g. tube:helix4, 111k faces).\n";
+               "tube coiled T times (e.g. tube:helix4, 112k faces).\n";
 }
 
 std::vector<std::string> split(const std::string& s, char separator)

@@ -61,7 +61,7 @@ large_corpus=(cow@loop2 triceratops@loop2 bear@loop1 retinal@loop2 dino@loop2 fa
 # Slivers and near-duplicate vertices (see mesh_defects.h), at corpus and held-out sizes.
 defects_corpus=(cow@needles50 triceratops@needles50 bull@slivers50 man@slivers50 cow@loop2@needles200
                 bull@loop2@slivers200 man@loop1@needles100)
-# Long tubes, straight and coiled, 3k to 111k faces (see synthetic_shapes.h): their energies'
+# Long tubes, straight and coiled, 3k to 112k faces (see synthetic_shapes.h): their energies'
 # infimum squeezes the tube to nothing, so their maps end on the fold barrier's floor.
 tubes_corpus=(tube:capsule10 tube:capsule40 tube:capsule150 tube:helix1 tube:helix2 tube:helix4)
 if [ "$large" = 1 ]; then

@@ -25,6 +25,11 @@ namespace synthetic_shapes {
 
 using Vec = std::array<double, 3>;
 
+inline Vec cross(const Vec& a, const Vec& b)
+{
+  return Vec{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
 /// A centre line `point(s)`, `s` in [0, 1], with two unit normals `first_normal(s)` and
 /// `second_normal(s)` such that (first, second, tangent) is right-handed.
 struct Centre_line
@@ -87,21 +92,19 @@ CGAL::Surface_mesh<Point> helix(double turns)
 {
   const double pi = std::acos(-1.0), coil = 3, rise = 3;
   const double speed = std::hypot(2 * pi * coil, rise);  // length per turn
+  auto angle = [=](double s) { return 2 * pi * turns * s; };
+  auto outwards = [=](double s) { return Vec{std::cos(angle(s)), std::sin(angle(s)), 0}; };
+  auto tangent = [=](double s) {
+    const double a = angle(s);
+    return Vec{-2 * pi * coil * std::sin(a) / speed, 2 * pi * coil * std::cos(a) / speed, rise / speed};
+  };
   Centre_line line;
   line.point = [=](double s) {
-    const double a = 2 * pi * turns * s;
+    const double a = angle(s);
     return Vec{coil * std::cos(a), coil * std::sin(a), rise * turns * s};
   };
-  line.first_normal = [=](double s) {  // towards the axis' outside
-    const double a = 2 * pi * turns * s;
-    return Vec{std::cos(a), std::sin(a), 0};
-  };
-  line.second_normal = [=](double s) {  // tangent x first normal
-    const double a = 2 * pi * turns * s;
-    const Vec t{-2 * pi * coil * std::sin(a) / speed, 2 * pi * coil * std::cos(a) / speed, rise / speed};
-    const Vec n{std::cos(a), std::sin(a), 0};
-    return Vec{t[1] * n[2] - t[2] * n[1], t[2] * n[0] - t[0] * n[2], t[0] * n[1] - t[1] * n[0]};
-  };
+  line.first_normal = outwards;
+  line.second_normal = [=](double s) { return cross(tangent(s), outwards(s)); };
   line.length = speed * turns;
   return tube<Point>(line, 0.5, 48);
 }
