@@ -50,16 +50,19 @@ private:
 /// CHOLMOD chooses per matrix between its supernodal factorization (dense BLAS blocks) and
 /// its simplicial one, by the flops per entry of the factor: supernodal from 80 on, where
 /// CHOLMOD's default switch is 40. The supernodes are coarser than CHOLMOD's default: up to
-/// 32, 96 and 192 columns merged whatever the zeros they add, under 80% and under 10% of
-/// zeros (`nrelax`; CHOLMOD's default 4, 16, 48). Each supernode costs BLAS calls and, in
-/// Debian's CHOLMOD, OpenMP regions whose set-up outweighs the zeros. Measured per
-/// factorization and solve, one process, both settings in turn (2x2-block matrices of the
-/// vertex graphs; flops per entry in brackets): 302k faces 0.86 -> 0.55 s, bunny00 0.174 ->
-/// 0.112 s, and supernodal now faster than simplicial from about 80: armadillo (125) 0.121
-/// -> 0.065 s, diplodocus (94) 0.076 -> 0.054 s, retinal (111) 0.017 -> 0.011 s; equal at 69
-/// to 74 (man, homer, blobby), slower under (bull (39) 0.007 -> 0.011 s). The factor is
-/// larger: the peak memory at 1.2M faces grew from 2.45 to 3.2 GB (2.7 GB with 16, 48, 96
-/// columns, which were 10 to 20% slower).
+/// 16, 48 and 96 columns merged whatever the zeros they add, under 80% and under 10% of
+/// zeros (`nrelax`; CHOLMOD's default 4, 16, 48). Each supernode costs BLAS calls, and it
+/// cost OpenMP regions whose set-up outweighed the zeros before they ran on one thread
+/// (below). Measured per factorization and solve, one process (2x2-block matrices of the
+/// vertex graphs; flops per entry in brackets), 32, 96, 192 columns against the default:
+/// 302k faces 0.86 -> 0.55 s, bunny00 0.174 -> 0.112 s, and supernodal then faster than
+/// simplicial from about 80: armadillo (125) 0.121 -> 0.065 s, diplodocus (94) 0.076 ->
+/// 0.054 s, retinal (111) 0.017 -> 0.011 s; equal at 69 to 74 (man, homer, blobby), slower
+/// under (bull (39) 0.007 -> 0.011 s). Whole runs, 16, 48, 96 against 32, 96, 192 once
+/// CHOLMOD's OpenMP ran serially: faster on each of the 21 corpus runs that factor
+/// supernodally (medians of 2 or 3: 1 to 7%, and up to 16% on the smallest or a shorter
+/// path), on 302k faces by 9% (medians of 4: 2.65 against 2.90 s) and on held-out sizes by
+/// 2 to 8%, with 30% less factor (392 -> 277 MB at 302k faces), so less fresh memory.
 /// From 50000 vertices on, the fill-reducing ordering is METIS's on the mesh's vertex graph,
 /// expanded to the two unknowns of each vertex (a matrix of even size is taken to be made of
 /// such 2x2 blocks; any other matrix is still factored correctly, perhaps with more fill):
@@ -126,9 +129,10 @@ public:
   }
 
   /// Allocates the factor's numbers for the analysed pattern and writes them once, so that
-  /// the first factorization does not meet fresh memory: 0.6 to 0.9 s of page faults for the
-  /// 392 MB factor at 302k faces on the machine we measured (a virtual machine), the first
-  /// factorization taking 1.45 s against 0.6 s for the next ones. Another thread may do it
+  /// the first factorization does not meet fresh memory: 0.6 to 0.9 s of page faults for a
+  /// 392 MB factor at 302k faces (coarser supernodes than now) on the machine we measured (a
+  /// virtual machine), the first factorization taking 1.45 s against 0.6 s for the next
+  /// ones. Another thread may do it
   /// while this object is otherwise unused. Supernodal factors only: the simplicial ones are
   /// small.
   void allocate_factor()
@@ -159,7 +163,7 @@ private:
 
   static constexpr Eigen::Index vertex_ordering_from = 50000;  // vertices
   static constexpr double supernodal_from = 80;                // flops per entry of the factor
-  static constexpr std::size_t relaxed_columns[3] = {32, 96, 192};  // see the class comment
+  static constexpr std::size_t relaxed_columns[3] = {16, 48, 96};  // see the class comment
   internal::Vertex_ordered_cholmod<Matrix> solver_;
 };
 
