@@ -48,21 +48,17 @@ private:
 /// The same with CHOLMOD's Cholesky factorization (SuiteSparse), about twice as fast on
 /// large meshes. Available when `CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD` is defined.
 /// CHOLMOD chooses per matrix between its supernodal factorization (dense BLAS blocks) and
-/// its simplicial one, by the flops per entry of the factor: supernodal from 80 on, where
-/// CHOLMOD's default switch is 40. The supernodes are coarser than CHOLMOD's default: up to
-/// 16, 48 and 96 columns merged whatever the zeros they add, under 80% and under 10% of
-/// zeros (`nrelax`; CHOLMOD's default 4, 16, 48). Each supernode costs BLAS calls, and it
-/// cost OpenMP regions whose set-up outweighed the zeros before they ran on one thread
-/// (below). Measured per factorization and solve, one process (2x2-block matrices of the
-/// vertex graphs; flops per entry in brackets), 32, 96, 192 columns against the default:
-/// 302k faces 0.86 -> 0.55 s, bunny00 0.174 -> 0.112 s, and supernodal then faster than
-/// simplicial from about 80: armadillo (125) 0.121 -> 0.065 s, diplodocus (94) 0.076 ->
-/// 0.054 s, retinal (111) 0.017 -> 0.011 s; equal at 69 to 74 (man, homer, blobby), slower
-/// under (bull (39) 0.007 -> 0.011 s). Whole runs, 16, 48, 96 against 32, 96, 192 once
-/// CHOLMOD's OpenMP ran serially: faster on each of the 21 corpus runs that factor
-/// supernodally (medians of 2 or 3: 1 to 7%, and up to 16% on the smallest or a shorter
-/// path), on 302k faces by 9% (medians of 4: 2.65 against 2.90 s) and on held-out sizes by
-/// 2 to 8%, with 30% less factor (392 -> 277 MB at 302k faces), so less fresh memory.
+/// its simplicial one, by the flops per entry of the factor: supernodal from 40 on
+/// (CHOLMOD's default switch). The supernodes are coarser than CHOLMOD's default: up to 16,
+/// 48 and 96 columns merged whatever the zeros they add, under 80% and under 10% of zeros
+/// (`nrelax`; CHOLMOD's default 4, 16, 48), as each supernode costs BLAS calls. Coarser
+/// supernodes (32, 96, 192) and a higher switch (80) were faster while CHOLMOD's OpenMP
+/// regions ran on several threads (they now run on one, below). Whole runs against those
+/// settings: 302k faces 2.90 -> 2.65 s (medians of 4), each of the 21 corpus runs that
+/// factor supernodally 1 to 7% faster (up to 16%), held-out sizes 2 to 8%, and the factor
+/// at 302k faces 392 -> 277 MB; with the switch at 40, the meshes of 40 to 80 flops per
+/// entry 10 to 25% faster (man, 35k faces, 69: 2.35 -> 1.86 s; homer, cow), the others
+/// alike (medians of 2; doc/NOTES.md, session 38).
 /// From 50000 vertices on, the fill-reducing ordering is METIS's on the mesh's vertex graph,
 /// expanded to the two unknowns of each vertex (a matrix of even size is taken to be made of
 /// such 2x2 blocks; any other matrix is still factored correctly, perhaps with more fill):
@@ -162,7 +158,7 @@ private:
   };
 
   static constexpr Eigen::Index vertex_ordering_from = 50000;  // vertices
-  static constexpr double supernodal_from = 80;                // flops per entry of the factor
+  static constexpr double supernodal_from = 40;                // flops per entry of the factor
   static constexpr std::size_t relaxed_columns[3] = {16, 48, 96};  // see the class comment
   internal::Vertex_ordered_cholmod<Matrix> solver_;
 };
