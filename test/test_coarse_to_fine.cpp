@@ -343,6 +343,60 @@ void test_floor_patch()
          "lowest share of the floor " + str(lowest_before / floor) + " -> " + str(lowest_after / floor));
 }
 
+// The splits of one pass are placed in parallel (`Coarse_to_fine::refine()`): the batches of
+// `Refinement::independent_splits()` are independent (no vertex of a batch in the ring of
+// another of the batch), and the parallel placement gives the sequential one's points, bit
+// for bit. Icosphere level 6 (41k vertices): batches above TBB's grain of 512.
+void test_parallel_splits()
+{
+  using Newton = I::Newton_solver<SP::Eigen_sparse_LDLT_traits, CGAL::Sequential_tag>;
+  SP::Icosphere sphere = SP::make_icosphere(6);
+  for(auto& p : sphere.points) p *= 1 + 0.05 * uniform(-1, 1);
+  const I::Triangle_soup soup = I::make_triangle_soup(sphere.points, sphere.faces);
+  const I::Progressive_mesh pm(soup, 200);
+
+  I::Refinement refinement(pm);
+  std::vector<int> batch_of(soup.number_of_vertices(), -1);  // of each split vertex
+  bool independent = true;
+  int batches = 0;
+  std::size_t largest = 0;
+  I::Fan fan;
+  for(; refinement.splits_left() > 0; ++batches) {
+    const std::size_t batch = refinement.independent_splits();
+    largest = std::max(largest, batch);
+    std::vector<I::Fan> fans;
+    for(std::size_t k = 0; k < batch && independent; ++k) {
+      const I::Vertex_split& split = refinement.split_next();
+      batch_of[split.removed] = batches;
+      refinement.fan(split, fan);
+      fans.push_back(fan);
+    }
+    for(const I::Fan& f : fans)
+      for(const auto& [p, q] : f)
+        independent = independent && batch_of[p] != batches && batch_of[q] != batches;
+  }
+  report("refinement: the splits of each batch are independent (" + std::to_string(batches) + " batches, the largest " +
+           std::to_string(largest) + ")",
+         independent && batches > 1 && largest > 512);
+
+#ifdef CGAL_LINKED_WITH_TBB
+  auto refined = [&](auto concurrency) {
+    I::Coarse_to_fine<Newton, decltype(concurrency)> levels(soup, pm, 3);
+    I::Points x(soup.number_of_vertices(), Eigen::Vector3d::Zero());
+    for(std::size_t v = 0; v < x.size(); ++v)
+      if(pm.coarse_vertex_alive()[v])
+        x[v] = soup.points[v].normalized();
+    while(levels.refine(x)) {
+    }
+    return x;
+  };
+  const I::Points sequential = refined(CGAL::Sequential_tag()), parallel = refined(CGAL::Parallel_tag());
+  report("refinement: the splits placed in parallel land where the sequential placement puts them", sequential == parallel);
+#else
+  skip("[parallel splits]", "built without TBB");
+#endif
+}
+
 // The two-grid cycle of the input's first step (`Coarse_to_fine::coarse_correction()`): its
 // restriction is the transpose of its prolongation, and after the splits from a converged
 // level its step lowers the energy below block Jacobi's alone, the smooth error included.
@@ -447,6 +501,7 @@ int main()
   test_mobius_boost();
   test_floor_patch();
   test_two_grid_cycle();
+  test_parallel_splits();
   test_slow_capped_tail();
   std::cout << passed << " passed, " << failed << " failed" << std::endl;
   return failed == 0 ? 0 : 1;

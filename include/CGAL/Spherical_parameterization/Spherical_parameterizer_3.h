@@ -491,7 +491,7 @@ private:
     const bool small = input_.number_of_vertices() <= 2 * coarse_vertices;  // no gain in a hierarchy
     hierarchy(small ? input_.number_of_vertices() : coarse_vertices);
     const bool two_grid = input_.number_of_vertices() > two_grid_vertices;  // see minimize_level()
-    internal::Coarse_to_fine<Newton> levels(input_.soup, *hierarchy_, level_ratio, two_grid);
+    internal::Coarse_to_fine<Newton, ConcurrencyTag> levels(input_.soup, *hierarchy_, level_ratio, two_grid);
     const internal::Coarse_correction coarse_correction = [&levels](const auto& map, const auto& gradient, auto& step) {
       return levels.coarse_correction(map, gradient, step);
     };

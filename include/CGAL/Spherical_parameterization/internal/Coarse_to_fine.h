@@ -8,9 +8,11 @@
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
 #include <CGAL/Spherical_parameterization/internal/kernel_placement.h>
 #include <CGAL/Spherical_parameterization/internal/map_validity.h>
+#include <CGAL/Spherical_parameterization/internal/parallel_for.h>
 
 #include <Eigen/Cholesky>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -127,8 +129,11 @@ inline void remove_global_modes(const Points& x, std::vector<Eigen::Vector3d>& s
 /// input back to the input, their sizes growing by a constant ratio. Going to the next level
 /// makes the vertex splits in between: each new vertex goes to the mean value point of its
 /// ring (`mean_value_point()`), moved into the kernel of its fan when that point is not well
-/// inside (`place_in_kernel()`), so that a fold-free map of a level stays fold-free.
-template <class Newton>
+/// inside (`place_in_kernel()`), so that a fold-free map of a level stays fold-free. With
+/// `CGAL::Parallel_tag` the splits of one pass of the progressive mesh are placed in
+/// parallel, to the same points (bunny00 after one subdivision: 2.77 -> 2.60 s, the splits
+/// into its input 0.17 s before; after two, 16.1 -> 15.5 s).
+template <class Newton, class ConcurrencyTag = CGAL::Sequential_tag>
 class Coarse_to_fine
 {
 public:
@@ -163,12 +168,29 @@ public:
     const bool for_two_grid = two_grid_ && into_input;
     split_rings_.clear();
     while(refinement_.number_of_vertices() < sizes_[next_size_]) {
-      const Vertex_split& split = refinement_.split_next();
-      refinement_.fan(split, fan_);
-      x[split.removed] = place_in_kernel(x, fan_, mean_value_point(split.removed, input_->points, x, fan_));
-      empty_kernels_ += !(fan_clearance(x[split.removed], x, fan_) > 0);
-      if(for_two_grid)
-        split_rings_.add(split.removed, fan_);
+      // A batch of independent splits: the placements read only their rings' points, none
+      // of which the batch moves, so they run in parallel with the same results.
+      const std::size_t batch =
+        std::min(refinement_.independent_splits(), sizes_[next_size_] - refinement_.number_of_vertices());
+      if(fans_.size() < batch)
+        fans_.resize(batch);
+      removed_.resize(batch);
+      for(std::size_t k = 0; k < batch; ++k) {
+        const Vertex_split& split = refinement_.split_next();
+        removed_[k] = split.removed;
+        refinement_.fan(split, fans_[k]);
+      }
+      inside_.assign(batch, 1);
+      parallel_for<ConcurrencyTag>(batch, [&](std::size_t k) {
+        const int u = removed_[k];
+        x[u] = place_in_kernel(x, fans_[k], mean_value_point(u, input_->points, x, fans_[k]));
+        inside_[k] = fan_clearance(x[u], x, fans_[k]) > 0;
+      });
+      for(std::size_t k = 0; k < batch; ++k) {
+        empty_kernels_ += !inside_[k];
+        if(for_two_grid)
+          split_rings_.add(removed_[k], fans_[k]);
+      }
     }
     ++next_size_;
     // The last level before the input, with its last factorization, serves the input's
@@ -240,7 +262,9 @@ private:
   std::size_t next_size_ = 0;
   std::unique_ptr<Level<Newton>> level_, last_level_;
   Split_rings split_rings_;  // of the splits from the last level to the input
-  Fan fan_;
+  std::vector<Fan> fans_;    // of a batch of independent splits, see refine()
+  std::vector<int> removed_;
+  std::vector<char> inside_;
   std::size_t empty_kernels_ = 0;
 };
 

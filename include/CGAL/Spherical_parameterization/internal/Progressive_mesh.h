@@ -328,6 +328,18 @@ public:
 
   /// How many collapses are still to undo: 0 once the mesh is the input again.
   std::size_t splits_left() const { return splits_left_; }
+  /// How many of the next splits undo collapses of the same pass as the next one: their
+  /// vertices are independent (see `Progressive_mesh`), each one's ring made of vertices
+  /// present before all of them.
+  std::size_t independent_splits() const
+  {
+    if(splits_left_ == 0)
+      return 0;
+    const std::vector<std::size_t>& ends = pm_->pass_ends();
+    // The first pass end past the next split's collapse; the pass starts at the one before.
+    const auto end = std::upper_bound(ends.begin(), ends.end(), splits_left_ - 1);
+    return splits_left_ - (end == ends.begin() ? 0 : *(end - 1));
+  }
   std::size_t number_of_vertices() const { return pm_->number_of_input_vertices() - splits_left_; }
 
   /// Undoes the last collapse left and returns it.
