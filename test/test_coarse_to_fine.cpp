@@ -43,6 +43,15 @@ using namespace test_support;
 
 namespace {
 
+// A subdivided icosahedron with its vertices pushed radially by up to 5%: the points'
+// central projection is a map.
+I::Triangle_soup bumpy_icosphere(int level)
+{
+  SP::Icosphere sphere = SP::make_icosphere(level);
+  for(auto& p : sphere.points) p *= 1 + 0.05 * uniform(-1, 1);
+  return I::make_triangle_soup(sphere.points, sphere.faces);
+}
+
 // A subdivided icosahedron with its vertices pushed radially by `bumps`, and a long thin
 // finger grown out of it (a protrusion, like a leg), so that the decimation meets both.
 I::Triangle_soup bumpy_sphere_with_finger(int level, double bumps)
@@ -350,9 +359,7 @@ void test_floor_patch()
 void test_parallel_splits()
 {
   using Newton = I::Newton_solver<SP::Eigen_sparse_LDLT_traits, CGAL::Sequential_tag>;
-  SP::Icosphere sphere = SP::make_icosphere(6);
-  for(auto& p : sphere.points) p *= 1 + 0.05 * uniform(-1, 1);
-  const I::Triangle_soup soup = I::make_triangle_soup(sphere.points, sphere.faces);
+  const I::Triangle_soup soup = bumpy_icosphere(6);
   const I::Progressive_mesh pm(soup, 200);
 
   I::Refinement refinement(pm);
@@ -365,7 +372,7 @@ void test_parallel_splits()
     const std::size_t batch = refinement.independent_splits();
     largest = std::max(largest, batch);
     std::vector<I::Fan> fans;
-    for(std::size_t k = 0; k < batch && independent; ++k) {
+    for(std::size_t k = 0; k < batch; ++k) {
       const I::Vertex_split& split = refinement.split_next();
       batch_of[split.removed] = batches;
       refinement.fan(split, fan);
@@ -403,9 +410,7 @@ void test_parallel_splits()
 void test_two_grid_cycle()
 {
   using Newton = I::Newton_solver<SP::Eigen_sparse_LDLT_traits, CGAL::Sequential_tag>;
-  SP::Icosphere sphere = SP::make_icosphere(4);
-  for(auto& p : sphere.points) p *= 1 + 0.05 * uniform(-1, 1);
-  const I::Triangle_soup soup = I::make_triangle_soup(sphere.points, sphere.faces);
+  const I::Triangle_soup soup = bumpy_icosphere(4);
   const I::Progressive_mesh pm(soup, 200);
   I::Coarse_to_fine<Newton> levels(soup, pm, 3, true);
   const SP::Dirichlet_energy dirichlet;

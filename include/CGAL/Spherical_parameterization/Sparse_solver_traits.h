@@ -128,9 +128,8 @@ public:
   /// the first factorization does not meet fresh memory: 0.6 to 0.9 s of page faults for a
   /// 392 MB factor at 302k faces (coarser supernodes than now) on the machine we measured (a
   /// virtual machine), the first factorization taking 1.45 s against 0.6 s for the next
-  /// ones. Another thread may do it
-  /// while this object is otherwise unused. Supernodal factors only: the simplicial ones are
-  /// small.
+  /// ones. Another thread may do it while this object is otherwise unused. Supernodal
+  /// factors only: the simplicial ones are small.
   void allocate_factor()
   {
     const internal::Cholmod_huge_pages huge_pages;

@@ -180,7 +180,7 @@ public:
         removed_[k] = split.removed;
         refinement_.fan(split, fans_[k]);
       }
-      inside_.assign(batch, 1);
+      inside_.resize(batch);
       parallel_for<ConcurrencyTag>(batch, [&](std::size_t k) {
         const int u = removed_[k];
         x[u] = place_in_kernel(x, fans_[k], mean_value_point(u, input_->points, x, fans_[k]));
