@@ -8,7 +8,6 @@
 #include <Eigen/SparseCore>
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
 #include <CGAL/Spherical_parameterization/internal/Vertex_ordered_cholmod.h>
-#include <CGAL/Spherical_parameterization/internal/huge_page_allocation.h>
 #include <CGAL/Spherical_parameterization/internal/solver_threads.h>
 #include <Eigen/CholmodSupport>
 #endif
@@ -76,10 +75,14 @@ private:
 /// CHOLMOD's own OpenMP regions run on the calling thread alone: Debian's CHOLMOD opens them
 /// with 4 threads whatever the cores, for loops as short as clearing a supernode, and on two
 /// cores they cost bunny00 15 to 20% of its time.
-/// On Linux, CHOLMOD's large blocks are backed by transparent huge pages while it works for
-/// us (SuiteSparse before 7, whose allocator is a global; only its default allocator is
-/// replaced, and restored after): fresh memory costs a page fault per 4 kB page, and at 302k
-/// faces the factorizations ran 14 to 30% faster, the first of each level 22 to 38%.
+/// CHOLMOD allocates with its default allocator (4 kB pages). Transparent huge pages
+/// (`internal::Cholmod_huge_pages`) made the factorizations 14 to 30% faster at 302k faces
+/// when the first one of each level met the factor's fresh memory. Now the input's factor is
+/// written ahead on another thread (`allocate_factor()`), and huge pages only slowed down the
+/// first factorization of the other levels (the 40.5k-vertex level at 302k faces: 0.19 to
+/// 0.24 s against 0.08 s; the system time of the run 0.9 to 1.1 s against 0.53 s). Whole runs
+/// without them: 302k faces 2.85 -> 2.75 s, 1.2M faces 15.5 -> 14.8 s (benchmark, alternated),
+/// the other sizes alike (doc/NOTES.md, session 39).
 /// \cgalModels `SphericalSparseSolverTraits`
 class Cholmod_traits
 {
@@ -107,7 +110,6 @@ public:
   void analyze_pattern(const Matrix& m)
   {
     const internal::Openmp_serial openmp_serial;
-    const internal::Cholmod_huge_pages huge_pages;
     if(m.rows() < 2 * vertex_ordering_from || !solver_.analyze_pattern_by_vertices(m))
       solver_.analyzePattern(m);
     solver_.order_ahead(m);
@@ -132,7 +134,6 @@ public:
   /// factors only: the simplicial ones are small.
   void allocate_factor()
   {
-    const internal::Cholmod_huge_pages huge_pages;
     solver_.allocate_numeric_factor();
   }
 
@@ -153,7 +154,6 @@ private:
   {
     internal::Blas_thread_slack blas_threads;
     internal::Openmp_serial openmp_serial;
-    internal::Cholmod_huge_pages huge_pages;
   };
 
   static constexpr Eigen::Index vertex_ordering_from = 50000;  // vertices

@@ -59,11 +59,12 @@ inline void* huge_page_calloc(std::size_t count, std::size_t size)
 /// a global, `SuiteSparse_config`, found by name (`dlsym`), so nothing more is linked; with
 /// version 7 or later, or without `MADV_HUGEPAGE`, this does nothing.
 ///
-/// Why: fresh memory is expensive on the machines we measured (virtual machines, a page fault
-/// per 4 kB page). A factorization of the 2n x 2n Newton matrix at 302k faces took 1.2 s, and
-/// 2.0 s the first time on a level (the factor's first touch); with huge pages 0.85 s and
-/// 1.25 s. Measured in one process, guard on and off in turn: 0.93 -> 0.80 s and 1.50 -> 1.17
-/// s (doc/NOTES.md, round eleven).
+/// The package's own factorizations no longer take it (`Cholmod_traits`, session 39): since
+/// the input's factor is written ahead on another thread, huge pages only slowed down the
+/// first factorization of the other levels. The benchmark's yardstick still tries it, as it
+/// makes some factorizations faster (a Laplacian at 302k faces: 0.25 against 0.28 s). It was
+/// added when a factorization of the 2n x 2n Newton matrix at 302k faces took 1.2 s, and 2.0
+/// s the first time on a level; with huge pages 0.85 s and 1.25 s (doc/NOTES.md, round eleven).
 class Cholmod_huge_pages
 {
 public:
