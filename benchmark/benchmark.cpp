@@ -47,8 +47,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <iostream>
 #include <initializer_list>
+#include <iostream>
 #include <optional>
 #include <random>
 #include <sstream>
@@ -374,8 +374,9 @@ Sparse laplacian(const Mesh& mesh, std::string& kind)
 }
 
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
-// The faster of CHOLMOD's two factorizations: supernodal wins on large meshes, simplicial
-// on small and thin ones, as for the Newton matrices (see Cholmod_traits).
+// The fastest of CHOLMOD's factorizations: supernodal wins on large meshes, simplicial on
+// small and thin ones, as for the Newton matrices (see Cholmod_traits); huge pages help the
+// supernodal one at some sizes only (see solve_time()).
 const char* const yardstick_solver_name = "CHOLMOD LLT (the fastest of supernodal, supernodal on huge pages, and simplicial)";
 #else
 const char* const yardstick_solver_name = "Eigen SimplicialLLT";
