@@ -3,7 +3,8 @@
 //
 // Tests of the per-face building blocks, without any mesh: the energies and their exact
 // derivatives (Triangle_jet), the d_min correction of Friedel et al., the Triangle_jet chain
-// rules, the fold-free step bound and the tangent bases of the Newton solver.
+// rules, the fold-free step bound, the tangent bases and the positive semi-definite
+// projection (with its small eigen solver) of the Newton solver.
 // Usage: test_energies            (prints PASS/FAIL per check, then "N passed, M failed")
 
 #include <CGAL/Spherical_parameterization/Area_energy.h>
@@ -18,14 +19,17 @@
 #include <CGAL/Spherical_parameterization/Weighted_sum_energy.h>
 #include <CGAL/Spherical_parameterization/d_min_correction.h>
 #include <CGAL/Spherical_parameterization/internal/Fold_barrier.h>
+#include <CGAL/Spherical_parameterization/internal/Symmetric_eigen.h>
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
 #include <CGAL/Spherical_parameterization/internal/Untangling_energy.h>
+#include <CGAL/Spherical_parameterization/internal/project_psd.h>
 #include <CGAL/Spherical_parameterization/internal/step_bound.h>
 #include <CGAL/Spherical_parameterization/internal/tangent_basis.h>
 
 #include "test_support.h"
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -748,6 +752,105 @@ void test_mollified_triangles()
   report("mollified_triangle of thin triangles: a positive added length, angles summing to pi", fat_enough);
 }
 
+// ---------------------------------------------------------------------------------------
+// The small symmetric eigen solver and the positive semi-definite projection
+
+// Symmetric N x N test matrices of the kinds the solver meets or could: random, of low rank
+// (as the face Hessians with their near-null rotations), with repeated eigenvalues, already
+// diagonal or nearly, zero, and spanning twelve orders of magnitude.
+template <int N>
+std::vector<Eigen::Matrix<double, N, N>> symmetric_test_matrices()
+{
+  using Matrix = Eigen::Matrix<double, N, N>;
+  std::normal_distribution<double> normal;
+  auto gaussian = [&] { Matrix m; for(int i = 0; i < N * N; ++i) m(i) = normal(rng); return m; };
+  auto rotation = [&] { return Matrix(Eigen::HouseholderQR<Matrix>(gaussian()).householderQ()); };
+  std::vector<Matrix> matrices{Matrix::Zero(), Matrix::Identity(), Matrix(Matrix::Identity() * -2)};
+  for(int n = 0; n < 2000; ++n) {
+    const Matrix g = gaussian();
+    matrices.push_back(g + g.transpose());
+    const Eigen::Matrix<double, N, N / 2> low = gaussian().leftCols(N / 2);
+    matrices.push_back(low * low.transpose() * (n % 2 ? 1 : -1));
+    Eigen::Matrix<double, N, 1> values;
+    for(int i = 0; i < N; ++i)
+      values(i) = i % 2 ? values(i - 1) : normal(rng) * std::pow(10.0, uniform(-6, 6));
+    const Matrix q = rotation();
+    matrices.push_back(q * values.asDiagonal() * q.transpose());
+    Matrix nearly_diagonal = Matrix(values.asDiagonal());
+    nearly_diagonal(N - 1, 0) = nearly_diagonal(0, N - 1) = 1e-300 * normal(rng);
+    matrices.push_back(nearly_diagonal);
+  }
+  return matrices;
+}
+
+template <int N>
+void check_symmetric_eigen()
+{
+  using Matrix = Eigen::Matrix<double, N, N>;
+  double reconstruction = 0, orthogonality = 0, against_eigen = 0;
+  bool converged = true;
+  for(const Matrix& a : symmetric_test_matrices<N>()) {
+    const SP::internal::Symmetric_eigen<N> eigen(a);
+    converged = converged && eigen.converged();
+    const Matrix& v = eigen.vectors();
+    const double size = std::max(a.norm(), std::numeric_limits<double>::min());
+    reconstruction = std::max(reconstruction, (v * eigen.values().asDiagonal() * v.transpose() - a).norm() / size);
+    orthogonality = std::max(orthogonality, (v.transpose() * v - Matrix::Identity()).norm());
+    Eigen::Matrix<double, N, 1> sorted = eigen.values();
+    std::sort(sorted.data(), sorted.data() + N);
+    const Eigen::SelfAdjointEigenSolver<Matrix> reference(a, Eigen::EigenvaluesOnly);
+    against_eigen = std::max(against_eigen, (sorted - reference.eigenvalues()).norm() / size);
+  }
+  const std::string n = std::to_string(N) + "x" + std::to_string(N);
+  report("Symmetric_eigen " + n + " converges on 8003 test matrices", converged);
+  report("Symmetric_eigen " + n + ": V diag(values) V^T = A (rel 1e-13)", reconstruction <= 1e-13, "rel. err. " + str(reconstruction));
+  report("Symmetric_eigen " + n + ": V is orthogonal (1e-13)", orthogonality <= 1e-13, "err. " + str(orthogonality));
+  report("Symmetric_eigen " + n + ": the eigenvalues of Eigen's SelfAdjointEigenSolver (rel 1e-13)", against_eigen <= 1e-13,
+         "rel. err. " + str(against_eigen));
+}
+
+void test_symmetric_eigen()
+{
+  check_symmetric_eigen<2>();
+  check_symmetric_eigen<3>();
+  check_symmetric_eigen<6>();
+  Eigen::Matrix<double, 6, 6> not_finite = Eigen::Matrix<double, 6, 6>::Identity();
+  not_finite(3, 2) = std::numeric_limits<double>::quiet_NaN();
+  const SP::internal::Symmetric_eigen<6> nan(not_finite);
+  not_finite(3, 2) = std::numeric_limits<double>::infinity();
+  const SP::internal::Symmetric_eigen<6> inf(not_finite);
+  report("Symmetric_eigen does not converge on a matrix with NaN or inf", !nan.converged() && !inf.converged());
+}
+
+// |A|: positive semi-definite, the absolute values of A's eigenvalues on the same
+// eigenvectors (so it commutes with A, and |A|^2 = A^2), A itself if A has no negative one.
+void test_project_to_psd()
+{
+  using Matrix = Eigen::Matrix<double, 6, 6>;
+  double negative = 0, commutator = 0, square = 0;
+  bool psd_kept = true;
+  for(const Matrix& a : symmetric_test_matrices<6>()) {
+    Matrix p = a;
+    SP::internal::project_to_psd(p);
+    const double size = std::max(a.norm(), std::numeric_limits<double>::min());
+    const Eigen::SelfAdjointEigenSolver<Matrix> eigen(p, Eigen::EigenvaluesOnly);
+    negative = std::max(negative, -eigen.eigenvalues().minCoeff() / size);
+    commutator = std::max(commutator, (a * p - p * a).norm() / (size * size));
+    square = std::max(square, (p * p - a * a).norm() / (size * size));
+    const Eigen::SelfAdjointEigenSolver<Matrix> of_a(a, Eigen::EigenvaluesOnly);
+    if(of_a.eigenvalues().minCoeff() > 1e-12 * size)
+      psd_kept = psd_kept && p == a;
+  }
+  report("project_to_psd gives a positive semi-definite matrix (rel 1e-13)", negative <= 1e-13, "rel. " + str(negative));
+  report("project_to_psd keeps the eigenvectors: |A| A = A |A| (rel 1e-13)", commutator <= 1e-13, "rel. err. " + str(commutator));
+  report("project_to_psd keeps the absolute eigenvalues: |A|^2 = A^2 (rel 1e-13)", square <= 1e-13, "rel. err. " + str(square));
+  report("project_to_psd leaves positive definite matrices bit for bit", psd_kept);
+  Matrix not_finite = Matrix::Identity();
+  not_finite(0, 5) = not_finite(5, 0) = std::numeric_limits<double>::quiet_NaN();
+  SP::internal::project_to_psd(not_finite);
+  report("project_to_psd makes a matrix with NaN zero", not_finite.isZero(0));
+}
+
 int main()
 {
   rng.seed(20260501);
@@ -760,6 +863,8 @@ int main()
   test_first_positive_root();
   test_largest_fold_free_step();
   test_tangent_basis();
+  test_symmetric_eigen();
+  test_project_to_psd();
   std::cout << passed << " passed, " << failed << " failed" << std::endl;
   return failed == 0 ? 0 : 1;
 }

@@ -16,6 +16,7 @@
 #include <CGAL/Spherical_parameterization/internal/step_bound.h>
 #include <CGAL/Spherical_parameterization/internal/tangent_basis.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SparseCore>
 
 #include <algorithm>
