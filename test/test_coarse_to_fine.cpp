@@ -474,7 +474,7 @@ void test_two_grid_cycle()
 }
 
 // The slow capped tail: a fold-free stage stops once its last capped steps gained less than
-// a quarter of the threshold each on average; not on fewer capped steps, nor on faster gains.
+// half the threshold each on average; not on fewer capped steps, nor on faster gains.
 void test_slow_capped_tail()
 {
   using Newton = I::Newton_solver<SP::Eigen_sparse_LDLT_traits, CGAL::Sequential_tag>;
@@ -486,11 +486,11 @@ void test_slow_capped_tail()
       history.push_back(history.back() - gain_per_iteration * threshold);
     return history;
   };
-  report("slow capped tail: stops when the capped steps gain 0.2 of the threshold each",
-         Newton::slow_capped_tail(tail(0.2), window, threshold));
-  report("slow capped tail: goes on when they gain 0.3 of it each", !Newton::slow_capped_tail(tail(0.3), window, threshold));
+  report("slow capped tail: stops when the capped steps gain 0.45 of the threshold each",
+         Newton::slow_capped_tail(tail(0.45), window, threshold));
+  report("slow capped tail: goes on when they gain 0.55 of it each", !Newton::slow_capped_tail(tail(0.55), window, threshold));
   report("slow capped tail: goes on when fewer of the last steps were capped",
-         !Newton::slow_capped_tail(tail(0.2), window - 1, threshold));
+         !Newton::slow_capped_tail(tail(0.45), window - 1, threshold));
   report("slow capped tail: goes on with too short a history",
          !Newton::slow_capped_tail(std::vector<double>(window, 10.0), window + 1, threshold));
 }
