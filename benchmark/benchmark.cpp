@@ -769,6 +769,9 @@ int main(int argc, char** argv)
     if(measured && measured->seconds < 0)
       std::cerr << in.name << ": the yardstick factorization failed\n";
     const int repeats = options.repeats ? *options.repeats : (mesh.number_of_faces() > 200000 ? 1 : 3);
+    std::vector<Point> input;  // the points as read, put back after each turned repeat
+    for(vertex_descriptor v : mesh.vertices())
+      input.push_back(mesh.point(v));
 
     for(const std::string& energy_name : options.energies) {
       const SP::Energy_mix energy = *SP::energy_by_name(energy_name);
@@ -783,16 +786,15 @@ int main(int argc, char** argv)
       row.yardstick = yardstick;
       row.yardstick_kind = kind;
       std::vector<Run_record> runs;
-      std::vector<Point> input;
-      for(vertex_descriptor v : mesh.vertices())
-        input.push_back(mesh.point(v));
       for(int r = 0; r < repeats; ++r) {
-        if(r > 0 && options.turn_repeats)
+        const bool turned = r > 0 && options.turn_repeats;
+        if(turned)
           turn(mesh, r);
         Run_record run = options.fork_runs ? run_forked(mesh, energy, pipeline, options.max_seconds)
                                            : run_once(mesh, energy, pipeline, options.max_seconds);
-        for(vertex_descriptor v : mesh.vertices())
-          mesh.point(v) = input[std::size_t(v)];
+        if(turned)
+          for(vertex_descriptor v : mesh.vertices())
+            mesh.point(v) = input[std::size_t(v)];
         if(!run.ran) {
           std::cerr << row.mesh << " / " << energy_name << ": " << run.detail << '\n';
           failures = true;
