@@ -10,7 +10,8 @@
 //             [--max-seconds S] [--no-fork] [--same-input] [--json FILE] [--csv FILE] MESH...
 // A MESH ending in "@loopN" (e.g. bunny00.off@loop2) is Loop-subdivided N times after reading;
 // "@sliversN" and "@needlesN" then add N nearly degenerate faces of each kind (mesh_defects.h).
-// "tube:capsuleL" and "tube:helixT" are long tubes built in code (synthetic_shapes.h).
+// "tube:capsuleL" and "tube:helixT" are long tubes built in code (synthetic_shapes.h), and
+// "iso:metaballsN" and "iso:latticeR" isosurfaces made by marching tetrahedra.
 //
 // Each run is done in a forked child process, so that its peak memory (ru_maxrss of the
 // child) belongs to that run alone; see README.md.
@@ -41,6 +42,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cerrno>
 #include <cmath>
@@ -90,7 +92,9 @@ void usage(const char* program)
                "A MESH path ending in @loopN is Loop-subdivided N times before timing; @sliversN and\n"
                "@needlesN then split N faces into slivers or needles (e.g. cow.off@needles50).\n"
                "A MESH tube:capsuleL or tube:helixT is built: a straight tube L radii long, or a thin\n"
-               "tube coiled T times (e.g. tube:helix4, 112k faces).\n";
+               "tube coiled T times (e.g. tube:helix4, 112k faces). A MESH iso:metaballsN or iso:latticeR is\n"
+               "an isosurface by marching tetrahedra: blobs on a grid of N cubes a side, or the sphere\n"
+               "of squared radius R through points of the integer grid (clusters of near-duplicate vertices).\n";
 }
 
 std::vector<std::string> split(const std::string& s, char separator)
@@ -510,10 +514,18 @@ struct Mesh_input
   int needles = 0;   // @needlesN: faces split at 1e-6 of an edge from a corner, 1e-7 off it
 };
 
-/// A MESH starting with this is built in code (synthetic_shapes.h): `tube:capsule150`, `tube:helix4`.
-const std::string tube_prefix = "tube:";
+/// A MESH starting with one of these is built in code (synthetic_shapes.h): `tube:capsule150`,
+/// `tube:helix4`, `iso:metaballs130`, `iso:lattice150`.
+const std::array<std::string, 2> synthetic_prefixes{"tube:", "iso:"};
 
-bool is_tube(const std::string& file) { return file.compare(0, tube_prefix.size(), tube_prefix) == 0; }
+/// The length of `file`'s prefix of a shape built in code, 0 if it is a file.
+std::size_t synthetic_prefix(const std::string& file)
+{
+  for(const std::string& prefix : synthetic_prefixes)
+    if(file.compare(0, prefix.size(), prefix) == 0)
+      return prefix.size();
+  return 0;
+}
 
 /// `MESH[@loopN][@sliversN][@needlesN]`; nothing on an unknown suffix.
 std::optional<Mesh_input> parse_mesh_argument(const std::string& argument)
@@ -535,23 +547,23 @@ std::optional<Mesh_input> parse_mesh_argument(const std::string& argument)
     }
   std::string stem = in.file.substr(slash == std::string::npos ? 0 : slash + 1);
   const std::size_t dot = stem.rfind('.');
-  if(is_tube(in.file))
-    stem = in.file.substr(tube_prefix.size());
+  if(synthetic_prefix(in.file) > 0)
+    stem = in.file.substr(synthetic_prefix(in.file));
   else if(dot != std::string::npos && dot > 0)
     stem = stem.substr(0, dot);
   in.name = stem + (at == std::string::npos ? "" : argument.substr(at));
   return in;
 }
 
-/// Builds a `tube:` mesh, reads any other; false if that gave no mesh.
+/// Builds a `tube:` or `iso:` mesh, reads any other; false if that gave no mesh.
 bool load_mesh(const std::string& file, Mesh& mesh)
 {
-  if(!is_tube(file))
+  if(synthetic_prefix(file) == 0)
     return CGAL::IO::read_polygon_mesh(file, mesh) && !mesh.is_empty();
-  std::optional<Mesh> tube = synthetic_shapes::by_name<Point>(file.substr(tube_prefix.size()));
-  if(tube)
-    mesh = std::move(*tube);
-  return bool(tube);
+  std::optional<Mesh> shape = synthetic_shapes::by_name<Point>(file.substr(synthetic_prefix(file)));
+  if(shape)
+    mesh = std::move(*shape);
+  return shape && !mesh.is_empty();
 }
 
 // ---------------------------------------------------------------------------------------
@@ -747,7 +759,7 @@ int main(int argc, char** argv)
     const Mesh_input& in = *parsed;
     Mesh mesh;
     if(!load_mesh(in.file, mesh)) {
-      std::cerr << (is_tube(in.file) ? "no such shape: " : "cannot read ") << in.file << '\n';
+      std::cerr << (synthetic_prefix(in.file) > 0 ? "no such shape: " : "cannot read ") << in.file << '\n';
       failures = true;
       continue;
     }

@@ -2,7 +2,7 @@
 # Builds the benchmark in Release and runs it over CGAL's sample meshes; writes
 # benchmark/results/latest.csv and latest.json, then the plots (see README.md).
 #
-# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--defects] [--tubes] [--energies LIST]
+# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--defects] [--tubes] [--isosurfaces] [--energies LIST]
 #                                   [--pipeline robust|paper] [--data DIR] [--build-dir DIR]
 #   --quick          only the meshes under 15k faces, 1 repeat each
 #   --full           also bunny00 Loop-subdivided once (300k faces) and twice (1.2M faces)
@@ -15,6 +15,9 @@
 #   --tubes          instead, long tubes built by the benchmark (tube:capsuleL, tube:helixT;
 #                    no data needed), 1 repeat, Combined unless --energies; results in
 #                    benchmark/results/tubes/
+#   --isosurfaces    instead, isosurfaces by marching tetrahedra built by the benchmark
+#                    (iso:metaballsN, iso:latticeR; no data needed), 1 repeat, all three
+#                    energies unless --energies; results in benchmark/results/isosurfaces/
 #   --energies LIST  comma-separated, default tutte,dirichlet,combined
 #   --pipeline P     robust (default) or paper
 #   --data DIR       a folder holding the .off meshes; default: CGAL's data tarball
@@ -31,6 +34,7 @@ full=0
 large=0
 defects=0
 tubes=0
+isosurfaces=0
 energies=""
 pipeline="robust"
 data=""
@@ -42,11 +46,12 @@ while [ $# -gt 0 ]; do
     --large) large=1 ;;
     --defects) defects=1 ;;
     --tubes) tubes=1 ;;
+    --isosurfaces) isosurfaces=1 ;;
     --energies) energies="$2"; shift ;;
     --pipeline) pipeline="$2"; shift ;;
     --data) data="$2"; shift ;;
     --build-dir) build_dir="$2"; shift ;;
-    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
     *) echo "unknown option $1" >&2; exit 1 ;;
   esac
   shift
@@ -65,6 +70,10 @@ defects_corpus=(cow@needles50 triceratops@needles50 bull@slivers50 man@slivers50
 # Long tubes, straight and coiled, 3k to 112k faces (see synthetic_shapes.h): their energies'
 # infimum squeezes the tube to nothing, so their maps end on the fold barrier's floor.
 tubes_corpus=(tube:capsule10 tube:capsule40 tube:capsule150 tube:helix1 tube:helix2 tube:helix4)
+# Isosurfaces of scans and segmentations (marching cubes or tetrahedra): clusters of
+# near-coincident vertices where the surface passes close to a grid point, tiny faces and
+# needles around them (see synthetic_shapes.h). 17k to 219k faces.
+isosurfaces_corpus=(iso:lattice150 iso:lattice300 iso:metaballs60 iso:metaballs100 iso:metaballs130 iso:metaballs180)
 repeats=""  # the benchmark's default: 3, or 1 above 200k faces
 if [ "$large" = 1 ]; then
   corpus=("${large_corpus[@]}")
@@ -82,6 +91,12 @@ if [ "$tubes" = 1 ]; then
   large=1
   repeats=1
   : "${energies:=combined}"
+fi
+if [ "$isosurfaces" = 1 ]; then
+  corpus=("${isosurfaces_corpus[@]}")
+  tubes=1  # built in code, like the tubes
+  large=1
+  repeats=1
 fi
 : "${energies:=tutte,dirichlet,combined}"
 
@@ -148,7 +163,7 @@ binary="$build_dir/bin/benchmark"
 
 # Run.
 results="$here/results"
-if [ "$tubes" = 1 ]; then results="$results/tubes"; elif [ "$defects" = 1 ]; then results="$results/defects"; elif [ "$large" = 1 ]; then results="$results/large"; fi
+if [ "$isosurfaces" = 1 ]; then results="$results/isosurfaces"; elif [ "$tubes" = 1 ]; then results="$results/tubes"; elif [ "$defects" = 1 ]; then results="$results/defects"; elif [ "$large" = 1 ]; then results="$results/large"; fi
 mkdir -p "$results"
 args=(--energies "$energies" --pipeline "$pipeline" --csv "$results/latest.csv" --json "$results/latest.json")
 if [ "$quick" = 1 ]; then repeats=1; fi

@@ -11,12 +11,15 @@
 #define SPHERICAL_PARAMETERIZATION_BENCHMARK_SYNTHETIC_SHAPES_H
 
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -109,11 +112,122 @@ CGAL::Surface_mesh<Point> helix(double turns)
   return tube<Point>(line, 0.5, 48);
 }
 
-/// The shape named `capsuleL` or `helixT` (L, T positive numbers), or nothing.
+/// The surface `field = 0` sampled on the grid `origin + spacing * (i, j, k)`, `0 <= i, j, k
+/// <= n`, by marching tetrahedra (six per cube, around its main diagonal, so that neighbouring
+/// cubes cut their common faces alike), faces oriented away from the region `field > 0`. Every
+/// vertex lies on a grid edge: where the surface passes close to a grid point, the vertices on
+/// that point's edges nearly coincide, the clusters of tiny faces and needles that isosurfaces
+/// of scans and segmentations are made of. Empty if the faces do not make a manifold.
+template <class Point>
+CGAL::Surface_mesh<Point> marching_tetrahedra(const std::function<double(const Vec&)>& field, int n, const Vec& origin,
+                                              double spacing)
+{
+  using Mesh = CGAL::Surface_mesh<Point>;
+  using Vertex = typename Mesh::Vertex_index;
+  const std::size_t side = std::size_t(n) + 1;
+  auto index = [side](int i, int j, int k) { return (std::size_t(i) * side + std::size_t(j)) * side + std::size_t(k); };
+  auto grid_point = [&](std::size_t g) {
+    const double i = double(g / (side * side)), j = double(g / side % side), k = double(g % side);
+    return Vec{origin[0] + spacing * i, origin[1] + spacing * j, origin[2] + spacing * k};
+  };
+  std::vector<double> value(side * side * side);
+  for(std::size_t g = 0; g < value.size(); ++g)
+    value[g] = field(grid_point(g));
+
+  Mesh mesh;
+  std::map<std::pair<std::size_t, std::size_t>, Vertex> on_edge;
+  auto edge_vertex = [&](std::size_t a, std::size_t b) {
+    const auto key = std::minmax(a, b);
+    const auto found = on_edge.find(key);
+    if(found != on_edge.end())
+      return found->second;
+    const double t = value[a] / (value[a] - value[b]);
+    const Vec p = grid_point(a), q = grid_point(b);
+    const Vertex v = mesh.add_vertex(Point(p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), p[2] + t * (q[2] - p[2])));
+    on_edge.emplace(key, v);
+    return v;
+  };
+  bool manifold = true;
+  // A face of the vertices on edges (a, b), (c, d), (e, f), turned away from `inside`.
+  auto add_face = [&](std::array<std::size_t, 6> e, std::size_t inside) {
+    std::array<Vertex, 3> v{edge_vertex(e[0], e[1]), edge_vertex(e[2], e[3]), edge_vertex(e[4], e[5])};
+    const auto& p0 = mesh.point(v[0]);
+    const auto normal = CGAL::cross_product(mesh.point(v[1]) - p0, mesh.point(v[2]) - p0);
+    const Vec g = grid_point(inside);
+    if(normal * (Point(g[0], g[1], g[2]) - p0) > 0)
+      std::swap(v[1], v[2]);
+    manifold = manifold && mesh.add_face(v[0], v[1], v[2]) != Mesh::null_face();
+  };
+  const std::array<std::array<int, 3>, 8> corner{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
+                                                  {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}}};
+  const std::array<std::array<int, 4>, 6> tetrahedra{{{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7},
+                                                      {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}}};
+  for(int i = 0; i < n; ++i)
+    for(int j = 0; j < n; ++j)
+      for(int k = 0; k < n; ++k)
+        for(const auto& tetrahedron : tetrahedra) {
+          std::array<std::size_t, 4> g;
+          std::vector<std::size_t> in, out;
+          for(int m = 0; m < 4; ++m) {
+            const auto& c = corner[std::size_t(tetrahedron[std::size_t(m)])];
+            g[std::size_t(m)] = index(i + c[0], j + c[1], k + c[2]);
+            (value[g[std::size_t(m)]] > 0 ? in : out).push_back(g[std::size_t(m)]);
+          }
+          if(in.size() == 1 || in.size() == 3) {
+            const std::size_t apex = in.size() == 1 ? in[0] : out[0];
+            std::vector<std::size_t> rest;
+            for(std::size_t c : g)
+              if(c != apex)
+                rest.push_back(c);
+            add_face({apex, rest[0], apex, rest[1], apex, rest[2]}, in[0]);
+          } else if(in.size() == 2) {  // the quad (a c, a d, b d, b c), a and b inside
+            add_face({in[0], out[0], in[0], out[1], in[1], out[1]}, in[0]);
+            add_face({in[0], out[0], in[1], out[1], in[1], out[0]}, in[0]);
+          }
+        }
+  return manifold && CGAL::is_closed(mesh) ? mesh : Mesh();
+}
+
+/// Five overlapping ellipsoidal blobs (an organ-like shape in [-1, 1]^3), the isosurface of
+/// their summed Gaussians by `marching_tetrahedra()` on a grid of `resolution` cubes a side.
+template <class Point>
+CGAL::Surface_mesh<Point> metaballs(int resolution)
+{
+  const std::array<std::array<double, 6>, 5> blobs{{{0.0, 0.0, 0.0, 0.55, 0.4, 0.35},
+                                                    {0.45, 0.15, 0.05, 0.35, 0.3, 0.25},
+                                                    {-0.4, -0.2, 0.1, 0.3, 0.35, 0.3},
+                                                    {0.1, -0.35, -0.1, 0.25, 0.2, 0.3},
+                                                    {-0.1, 0.3, 0.25, 0.2, 0.2, 0.2}}};
+  auto field = [blobs](const Vec& p) {
+    double sum = 0;
+    for(const auto& b : blobs) {
+      double d = 0;
+      for(int c = 0; c < 3; ++c)
+        d += (p[std::size_t(c)] - b[std::size_t(c)]) * (p[std::size_t(c)] - b[std::size_t(c)]) / (b[std::size_t(c) + 3] * b[std::size_t(c) + 3]);
+      sum += std::exp(-d);
+    }
+    return sum - 0.5 - 1e-7 * std::sqrt(2.0);  // the level off the grid's values
+  };
+  return marching_tetrahedra<Point>(field, resolution, Vec{-1.1, -1.1, -1.1}, 2.2 / resolution);
+}
+
+/// The sphere of squared radius `squared_radius` (plus 1e-5) around a point of the integer
+/// grid, by `marching_tetrahedra()` on that grid: it passes 1e-5 away from every grid point
+/// on the sphere of that radius, so each of them is a cluster of near-coincident vertices.
+template <class Point>
+CGAL::Surface_mesh<Point> lattice_sphere(double squared_radius)
+{
+  const int half = int(std::ceil(std::sqrt(squared_radius))) + 1;
+  auto field = [squared_radius](const Vec& p) { return squared_radius + 1e-5 - (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]); };
+  return marching_tetrahedra<Point>(field, 2 * half, Vec{-double(half), -double(half), -double(half)}, 1.0);
+}
+
+/// The shape named `capsuleL`, `helixT`, `metaballsN` or `latticeR` (positive numbers: length,
+/// turns, grid resolution, squared radius), or nothing.
 template <class Point>
 std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
 {
-  for(const std::string kind : {"capsule", "helix"}) {
+  for(const std::string kind : {"capsule", "helix", "metaballs", "lattice"}) {
     if(name.compare(0, kind.size(), kind) != 0)
       continue;
     const std::string number = name.substr(kind.size());
@@ -121,7 +235,10 @@ std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
     const double value = std::strtod(number.c_str(), &end);
     if(number.empty() || *end != '\0' || !(value > 0) || value > 1e4)
       return std::nullopt;
-    return kind == "capsule" ? capsule<Point>(value) : helix<Point>(value);
+    if(kind == "capsule") return capsule<Point>(value);
+    if(kind == "helix") return helix<Point>(value);
+    if(value > 400) return std::nullopt;  // a grid of 400^3 points is already 512 MB
+    return kind == "metaballs" ? metaballs<Point>(int(value)) : lattice_sphere<Point>(value);
   }
   return std::nullopt;
 }

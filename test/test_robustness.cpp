@@ -499,6 +499,12 @@ void test_irregular_shapes()
   // exp(-19) in area, so Combined ends with faces on the fold barrier's floor (doc/NOTES.md,
   // session 37).
   test_irregular(synthetic_shapes::helix<Point>(0.5), "coiled half a turn", "thin tube");
+  // Isosurfaces by marching tetrahedra: clusters of near-coincident vertices with faces of
+  // 1e-13 of the mesh's area among needles. Combined left no valid map on the sphere through
+  // grid points and did not converge on the blobs, before the area energy's floor and the
+  // hierarchy's collapses of near-duplicates (doc/NOTES.md, session 41).
+  test_irregular(synthetic_shapes::lattice_sphere<Point>(30), "through grid points (marching tetrahedra)", "sphere");
+  test_irregular(synthetic_shapes::metaballs<Point>(40), "by marching tetrahedra", "blobs");
   std::cerr << "time irregular shapes: " << seconds_since(start) << " s" << std::endl;
 }
 

@@ -92,8 +92,11 @@ inline Floor_patch make_floor_patch(const Triangle_soup& soup, const std::vector
       patch.soup.faces.push_back(t);
     }
   }
-  for(int v : vertices)
+  for(int v : vertices) {
     patch.soup.points.push_back(soup.points[v]);
+    if(!soup.vertex_scales.empty())
+      patch.soup.vertex_scales.push_back(soup.vertex_scales[v]);
+  }
   return patch;
 }
 

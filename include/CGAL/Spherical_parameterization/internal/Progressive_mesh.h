@@ -84,6 +84,8 @@ struct Vertex_split
 /// decimated evenly. A collapse is refused when it would break the manifold (link condition),
 /// turn a face's normal by more than about 80 degrees, make a needle, or raise a valence
 /// above 12: the coarse levels are solved as meshes of their own and need fair triangles.
+/// The geometric tests are skipped for a vertex nearly on top of its target
+/// (`is_near_duplicate()`).
 /// Passes over arrays rather than one global queue: measured 5x faster at 1.2M faces, where a
 /// heap of stale entries no longer fits in the caches.
 class Progressive_mesh
@@ -223,6 +225,8 @@ private:
     for_each_corner(v, [&](int k) { shared += stamp_[mesh_.vertex[Corner_table::next(k)]] == current_stamp_; });
     if(shared != 2)
       return false;
+    if(is_near_duplicate(u, v))
+      return true;
     // Geometry of the faces of u that v takes over.
     bool ok = true;
     for_each_corner(u, [&](int k) {
@@ -237,6 +241,24 @@ private:
     });
     return ok;
   }
+
+  // v is closer to u than a twentieth of u's mean edge: the near-coincident vertices of an
+  // isosurface's cluster (see `Triangle_soup::area_floor()`). Moving u onto v changes the
+  // surface by less than the noise of the cluster's own faces, whose normals are arbitrary:
+  // the geometric tests refused those collapses, and the clusters lasted into the coarse
+  // levels (the coarsest of marching tetrahedra at 219k faces had 2468 vertices, not 500).
+  bool is_near_duplicate(int u, int v) const
+  {
+    double sum = 0;
+    int count = 0;
+    for_each_corner(u, [&](int k) {
+      sum += (point(mesh_.vertex[Corner_table::next(k)]) - point(u)).norm();
+      ++count;
+    });
+    return (point(v) - point(u)).norm() < near_duplicate_share * sum / count;
+  }
+
+  static constexpr double near_duplicate_share = 0.05;
 
   void collapse(int c)
   {
@@ -410,6 +432,9 @@ inline Triangle_soup level_soup(const Triangle_soup& input, const Refinement& re
   const double scale = std::sqrt(4 * M_PI / area);
   for(auto& p : soup.points)
     p *= scale;
+  if(!input.vertex_scales.empty())
+    for(int v : to_input)
+      soup.vertex_scales.push_back(scale * input.vertex_scales[std::size_t(v)]);
   soup.scale = input.scale * scale;
   soup.centroid = input.centroid;
   return soup;

@@ -102,6 +102,9 @@ struct Triangle_soup
   /// For a coarse level of the input: the input area each face stands for, which replaces
   /// its own area in the energies; empty for the input itself.
   std::vector<double> represented_areas;
+  /// The mean length of the input edges at each vertex, the local scale of `area_floor()`;
+  /// empty: no floor.
+  std::vector<double> vertex_scales;
 
   std::size_t number_of_vertices() const { return points.size(); }
   std::size_t number_of_faces() const { return faces.size(); }
@@ -120,9 +123,48 @@ struct Triangle_soup
     Reference_triangle r = mollified_triangle(points[t[0]], points[t[1]], points[t[2]]);
     if(!represented_areas.empty())
       r.area = represented_areas[f];
+    r.area_floor = area_floor(f);
     return r;
   }
+
+  /// The `Reference_triangle::area_floor` of face `f`: `area_floor_share` of the square of the
+  /// largest local scale at its vertices. Isosurfaces (marching cubes or tetrahedra) have a
+  /// cluster of near-coincident vertices wherever the surface passes close to a grid point:
+  /// faces of 1e-6 to 1e-13 of the mean area among needles, which the mollification makes fat.
+  /// Those needles want the cluster's image opened, the area energy wanted the tiny faces'
+  /// images tiny, and Combined found no valid map on 5 of 6 such meshes (doc/NOTES.md, session
+  /// 41). The local scale is the mean edge at a vertex, not the longest: a small fair face
+  /// next to a long edge keeps its area (CGAL's meshes: 16 faces floored, 11 of them on bull).
+  double area_floor(std::size_t f) const
+  {
+    if(vertex_scales.empty())
+      return 0;
+    const auto& t = faces[f];
+    const double scale = std::max({vertex_scales[t[0]], vertex_scales[t[1]], vertex_scales[t[2]]});
+    return area_floor_share * scale * scale;
+  }
+
+  static constexpr double area_floor_share = 3e-3;
 };
+
+/// The mean length of the edges at each vertex (each edge counted once per face).
+inline std::vector<double> mean_edge_lengths(const Points& points, const Faces& faces)
+{
+  std::vector<double> sum(points.size(), 0.0);
+  std::vector<int> count(points.size(), 0);
+  for(const auto& t : faces)
+    for(int i = 0; i < 3; ++i) {
+      const int a = t[i], b = t[(i + 1) % 3];
+      const double length = (points[a] - points[b]).norm();
+      sum[a] += length;
+      sum[b] += length;
+      ++count[a];
+      ++count[b];
+    }
+  for(std::size_t v = 0; v < points.size(); ++v)
+    sum[v] /= std::max(count[v], 1);
+  return sum;
+}
 
 /// Builds the soup from input points and faces as the user oriented them.
 inline Triangle_soup make_triangle_soup(Points points, Faces faces)
@@ -160,6 +202,7 @@ inline Triangle_soup make_triangle_soup(Points points, Faces faces)
       std::swap(t[1], t[2]);
   soup.points = std::move(points);
   soup.faces = std::move(faces);
+  soup.vertex_scales = mean_edge_lengths(soup.points, soup.faces);
   return soup;
 }
 
