@@ -13,6 +13,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <queue>
 #include <vector>
 
 namespace CGAL {
@@ -102,8 +103,8 @@ struct Triangle_soup
   /// For a coarse level of the input: the input area each face stands for, which replaces
   /// its own area in the energies; empty for the input itself.
   std::vector<double> represented_areas;
-  /// The mean length of the input edges at each vertex, the local scale of `area_floor()`;
-  /// empty: no floor.
+  /// The local scale of each input vertex (`local_scales()`) for `area_floor()`; empty: no
+  /// floor.
   std::vector<double> vertex_scales;
 
   std::size_t number_of_vertices() const { return points.size(); }
@@ -134,7 +135,7 @@ struct Triangle_soup
   /// Those needles want the cluster's image opened, the area energy wanted the tiny faces'
   /// images tiny, and Combined found no valid map on 5 of 6 such meshes (doc/NOTES.md, session
   /// 41). The local scale is the mean edge at a vertex, not the longest: a small fair face
-  /// next to a long edge keeps its area (CGAL's meshes: 16 faces floored, 11 of them on bull).
+  /// next to a long edge keeps its area (CGAL's meshes: 23 faces floored, 14 of them on bull).
   double area_floor(std::size_t f) const
   {
     if(vertex_scales.empty())
@@ -147,23 +148,46 @@ struct Triangle_soup
   static constexpr double area_floor_share = 3e-3;
 };
 
-/// The mean length of the edges at each vertex (each edge counted once per face).
-inline std::vector<double> mean_edge_lengths(const Points& points, const Faces& faces)
+/// The local scale of each vertex: the mean length of its edges (each edge counted once per
+/// face), raised to at least half of each neighbour's scale. The vertices inside a cluster of
+/// near-coincident vertices have only tiny edges; from the cluster's rim inwards their scale
+/// then halves at each edge instead of falling to the tiny edges' length (a sphere through
+/// 84 grid points: faces of 1e-14 inside clusters kept their area targets, no valid map).
+inline std::vector<double> local_scales(const Points& points, const Faces& faces)
 {
-  std::vector<double> sum(points.size(), 0.0);
+  std::vector<double> scale(points.size(), 0.0);
   std::vector<int> count(points.size(), 0);
   for(const auto& t : faces)
     for(int i = 0; i < 3; ++i) {
       const int a = t[i], b = t[(i + 1) % 3];
       const double length = (points[a] - points[b]).norm();
-      sum[a] += length;
-      sum[b] += length;
+      scale[a] += length;
+      scale[b] += length;
       ++count[a];
       ++count[b];
     }
   for(std::size_t v = 0; v < points.size(); ++v)
-    sum[v] /= std::max(count[v], 1);
-  return sum;
+    scale[v] /= std::max(count[v], 1);
+  // Largest first, as in Dijkstra's algorithm: a vertex's scale is final when it is popped.
+  std::priority_queue<std::pair<double, int>> queue;
+  for(std::size_t v = 0; v < points.size(); ++v)
+    queue.emplace(scale[v], int(v));
+  std::vector<std::vector<int>> neighbours(points.size());
+  for(const auto& t : faces)
+    for(int i = 0; i < 3; ++i)
+      neighbours[std::size_t(t[i])].push_back(t[(i + 1) % 3]);
+  while(!queue.empty()) {
+    const auto [s, v] = queue.top();
+    queue.pop();
+    if(s < scale[std::size_t(v)])
+      continue;  // a stale entry
+    for(int w : neighbours[std::size_t(v)])
+      if(0.5 * s > scale[std::size_t(w)]) {
+        scale[std::size_t(w)] = 0.5 * s;
+        queue.emplace(0.5 * s, w);
+      }
+  }
+  return scale;
 }
 
 /// Builds the soup from input points and faces as the user oriented them.
@@ -202,7 +226,7 @@ inline Triangle_soup make_triangle_soup(Points points, Faces faces)
       std::swap(t[1], t[2]);
   soup.points = std::move(points);
   soup.faces = std::move(faces);
-  soup.vertex_scales = mean_edge_lengths(soup.points, soup.faces);
+  soup.vertex_scales = local_scales(soup.points, soup.faces);
   return soup;
 }
 
