@@ -23,8 +23,9 @@ struct Reference_triangle
   std::array<Eigen::Vector3d, 3> points;  ///< the vertices, in the order of the face
   double area = 0;                        ///< the area, after scaling
   std::array<double, 3> angles{0, 0, 0};  ///< interior angle at each vertex, in radians
-  /// The smallest area that energies of area should ask of the triangle's image (0: none).
-  /// Set on faces much smaller than the edges around them, such as the clusters of
+  /// The smallest input area that energies of area take for this triangle (0: none). The
+  /// parameterizer sets 0.003 times the square of the local edge length, which exceeds `area`
+  /// only on faces much smaller than the edges around them, such as the clusters of
   /// near-coincident vertices of isosurfaces (see the user manual): an area target of 1e-12 of
   /// the mesh's made the area energy stiff enough to leave no valid map.
   double area_floor = 0;

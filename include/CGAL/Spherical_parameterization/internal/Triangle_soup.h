@@ -169,23 +169,40 @@ inline std::vector<double> local_scales(const Points& points, const Faces& faces
   for(std::size_t v = 0; v < points.size(); ++v)
     scale[v] /= std::max(count[v], 1);
   // Largest first, as in Dijkstra's algorithm: a vertex's scale is final when it is popped.
+  // Only the vertices that raise a neighbour start it (none on most meshes: nothing more to
+  // do); a path through a vertex they do not raise is never the largest.
   std::priority_queue<std::pair<double, int>> queue;
-  for(std::size_t v = 0; v < points.size(); ++v)
-    queue.emplace(scale[v], int(v));
-  std::vector<std::vector<int>> neighbours(points.size());
   for(const auto& t : faces)
     for(int i = 0; i < 3; ++i)
-      neighbours[std::size_t(t[i])].push_back(t[(i + 1) % 3]);
+      for(const auto [a, b] : {std::pair(t[i], t[(i + 1) % 3]), std::pair(t[(i + 1) % 3], t[i])})
+        if(0.5 * scale[std::size_t(a)] > scale[std::size_t(b)])
+          queue.emplace(scale[std::size_t(a)], a);
+  if(queue.empty())
+    return scale;
+  // The neighbours of each vertex (each twice on a closed mesh), in `count`'s slots.
+  std::vector<std::size_t> first(points.size() + 1, 0);
+  for(std::size_t v = 0; v < points.size(); ++v)
+    first[v + 1] = first[v] + std::size_t(count[v]);
+  std::vector<int> neighbour(first.back());
+  std::vector<std::size_t> filled(first.begin(), first.end() - 1);
+  for(const auto& t : faces)
+    for(int i = 0; i < 3; ++i) {
+      const int a = t[i], b = t[(i + 1) % 3];
+      neighbour[filled[std::size_t(a)]++] = b;
+      neighbour[filled[std::size_t(b)]++] = a;
+    }
   while(!queue.empty()) {
     const auto [s, v] = queue.top();
     queue.pop();
     if(s < scale[std::size_t(v)])
       continue;  // a stale entry
-    for(int w : neighbours[std::size_t(v)])
+    for(std::size_t k = first[std::size_t(v)]; k < first[std::size_t(v) + 1]; ++k) {
+      const int w = neighbour[k];
       if(0.5 * s > scale[std::size_t(w)]) {
         scale[std::size_t(w)] = 0.5 * s;
         queue.emplace(0.5 * s, w);
       }
+    }
   }
   return scale;
 }
