@@ -33,6 +33,14 @@ inline Vec cross(const Vec& a, const Vec& b)
   return Vec{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
+inline double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+inline Vec normalized(const Vec& a)
+{
+  const double length = std::sqrt(dot(a, a));
+  return Vec{a[0] / length, a[1] / length, a[2] / length};
+}
+
 /// A centre line `point(s)`, `s` in [0, 1], with two unit normals `first_normal(s)` and
 /// `second_normal(s)` such that (first, second, tangent) is right-handed.
 struct Centre_line
@@ -211,6 +219,31 @@ CGAL::Surface_mesh<Point> metaballs(int resolution)
   return marching_tetrahedra<Point>(field, resolution, Vec{-1.1, -1.1, -1.1}, 2.2 / resolution);
 }
 
+/// A ball with five long thin arms of radius 0.06 to 0.1 (a starfish, or the protrusions of
+/// a segmented skeleton), the isosurface of the largest of their signed distances by
+/// `marching_tetrahedra()` on a grid of `resolution` cubes a side in [-1.1, 1.1]^3.
+template <class Point>
+CGAL::Surface_mesh<Point> starfish(int resolution)
+{
+  // Each arm: the unit direction's unnormalized components, its length and radius.
+  const std::array<std::array<double, 5>, 5> arms{{{1.0, 0.1, 0.0, 0.95, 0.1},
+                                                   {-0.3, 1.0, 0.2, 0.9, 0.08},
+                                                   {-0.8, -0.6, 0.1, 0.95, 0.07},
+                                                   {0.4, -0.7, 0.6, 0.85, 0.06},
+                                                   {0.1, 0.2, -1.0, 0.9, 0.09}}};
+  auto field = [arms](const Vec& p) {
+    double largest = 0.3 - std::sqrt(dot(p, p));  // the body
+    for(const auto& a : arms) {
+      const Vec axis = normalized(Vec{a[0], a[1], a[2]});
+      const double along = std::clamp(dot(p, axis), 0.0, a[3]);
+      const Vec off{p[0] - along * axis[0], p[1] - along * axis[1], p[2] - along * axis[2]};
+      largest = std::max(largest, a[4] - std::sqrt(dot(off, off)));
+    }
+    return largest - 1e-7 * std::sqrt(2.0);  // the level off the grid's values
+  };
+  return marching_tetrahedra<Point>(field, resolution, Vec{-1.1, -1.1, -1.1}, 2.2 / resolution);
+}
+
 /// The sphere of squared radius `squared_radius` (plus 1e-5) around a point of the integer
 /// grid, by `marching_tetrahedra()` on that grid: it passes 1e-5 away from every grid point
 /// on the sphere of that radius, so each of them is a cluster of near-coincident vertices.
@@ -222,12 +255,12 @@ CGAL::Surface_mesh<Point> lattice_sphere(double squared_radius)
   return marching_tetrahedra<Point>(field, 2 * half, Vec{-double(half), -double(half), -double(half)}, 1.0);
 }
 
-/// The shape named `capsuleL`, `helixT`, `metaballsN` or `latticeR` (positive numbers: length,
-/// turns, grid resolution, squared radius), or nothing.
+/// The shape named `capsuleL`, `helixT`, `metaballsN`, `starfishN` or `latticeR` (positive
+/// numbers: length, turns, grid resolution, squared radius), or nothing.
 template <class Point>
 std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
 {
-  for(const std::string kind : {"capsule", "helix", "metaballs", "lattice"}) {
+  for(const std::string kind : {"capsule", "helix", "metaballs", "starfish", "lattice"}) {
     if(name.compare(0, kind.size(), kind) != 0)
       continue;
     const std::string number = name.substr(kind.size());
@@ -238,7 +271,9 @@ std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
     if(kind == "capsule") return capsule<Point>(value);
     if(kind == "helix") return helix<Point>(value);
     if(value > 400) return std::nullopt;  // a grid of 400^3 points is already 512 MB
-    return kind == "metaballs" ? metaballs<Point>(int(value)) : lattice_sphere<Point>(value);
+    if(kind == "metaballs") return metaballs<Point>(int(value));
+    if(kind == "starfish") return starfish<Point>(int(value));
+    return lattice_sphere<Point>(value);
   }
   return std::nullopt;
 }

@@ -275,6 +275,40 @@ void test_energies()
          "smallest value " + str(smallest));
 }
 
+/// With `floored_activation` (the continuation's barrier), a face whose input area is under its
+/// area floor is measured as a face of the floor's area and held from that activation on; a
+/// face above its floor is measured as without it.
+void test_barrier_on_area_floors()
+{
+  using Barrier = SP::internal::Fold_barrier;
+  int held = 0, as_floor_sized = 0, unchanged = 0;
+  const int count = 12;
+  for(int n = 0; n < count; ++n) {
+    const Sphere_triangle t = random_sphere_triangle(n % 2 == 1);
+    const SP::Chord_triangle<double> chord(t.p[0], t.p[1], t.p[2]);
+    const double det = determinant(t.p[0], t.p[1], t.p[2]);
+    // t of about 1e8 on its own area, about 0.1 on its floor.
+    SP::Reference_triangle tiny = random_reference(1e-8 * det);
+    tiny.area_floor = 2 * det;
+    const Barrier::Face_data d(tiny);
+    Barrier::Face_data floor_sized = d;
+    floor_sized.input_area = tiny.area_floor;
+    const double floored = Barrier::energy(chord, d, 1e-4, 0, 0.5);
+    held += Barrier::energy(chord, d, 1e-4) == 0 && floored > 0;
+    as_floor_sized += floored == Barrier::energy(chord, floor_sized, 0.5);
+    SP::Reference_triangle fair = random_reference(2 * det);
+    fair.area_floor = 0.5 * fair.area;
+    const Barrier::Face_data f(fair);
+    unchanged += Barrier::energy(chord, f, 0.2, 0.5, 0.9) == Barrier::energy(chord, f, 0.2, 0.5);
+  }
+  report("Fold_barrier with floored_activation holds a tiny face that its own area does not", held == count,
+         std::to_string(held) + " of " + std::to_string(count));
+  report("Fold_barrier with floored_activation measures it as a face of its floor's area", as_floor_sized == count,
+         std::to_string(as_floor_sized) + " of " + std::to_string(count));
+  report("Fold_barrier with floored_activation leaves a face above its floor as it was", unchanged == count,
+         std::to_string(unchanged) + " of " + std::to_string(count));
+}
+
 /// The untangling energy must be finite, with exact derivatives, on folded (det < 0) faces.
 void test_untangling_on_folded_faces()
 {
@@ -857,6 +891,7 @@ int main()
   test_mollified_triangles();
   test_energies();
   test_untangling_on_folded_faces();
+  test_barrier_on_area_floors();
   test_squared_d_min();
   test_d_min_branches();
   test_jet_arithmetic();

@@ -305,12 +305,17 @@ private:
     if(!optimistic)
       run.options.max_iterations = std::min(max_iterations, smoothing);
     // The input after a level whose optimistic stage was rejected: a fold that lasts three
-    // iterates will not come undone either (see `input_max_folded_iterations`).
+    // iterates will not come undone either (see `input_max_folded_iterations`), unless the
+    // folded faces at least halve from one iterate to the next.
     const std::size_t max_folded = run.options.max_folded_iterations;
-    if(&level == &input_ && run.optimistic_stage_rejected)
+    const bool after_rejected_level = &level == &input_ && run.optimistic_stage_rejected;
+    if(after_rejected_level) {
       run.options.max_folded_iterations = std::min(max_folded, input_max_folded_iterations);
+      run.options.count_unfolding_iterates = false;
+    }
     const bool uninterrupted = minimize(energy_, stage, false, run, level, x, visitor);
     run.options.max_folded_iterations = max_folded;
+    run.options.count_unfolding_iterates = true;
     run.options.max_iterations = max_iterations;
     run.options.smoothing_iterations = 0;
     run.options.coarse_correction = nullptr;
@@ -361,10 +366,12 @@ private:
     run.options.fold_floor = 1000 * saved.fold_floor;
     run.options.tolerance = std::max(saved.tolerance, 1e-4);
     run.options.outer_barrier_weight = is_input ? input_outer_barrier_weight : level_outer_barrier_weight;
+    run.options.floored_activation = floored_activation;
     const bool first = minimize(energy_, stage, true, run, level, x, visitor);
     run.options.fold_floor = saved.fold_floor;
     run.options.tolerance = saved.tolerance;
     run.options.outer_barrier_weight = 0;
+    run.options.floored_activation = 0;
     // A coarser level stops there: the next level's splits start from faces on the cushion
     // of the continuation instead of on the floor, which that level's continuation would
     // only have to lift again (man@loop1, Combined: 237 -> 185 iterations, 27.5 -> 18.7 s).
@@ -708,6 +715,15 @@ private:
   // 7.2 s).
   static constexpr double level_outer_barrier_weight = 3e-2;
   static constexpr double input_outer_barrier_weight = 1e-2;
+  // The continuation's activation for the faces under their area floor, measured against
+  // that floor (`Newton_options::floored_activation`); not on the floor, where it would
+  // change the minimum. Isosurfaces, Combined, one run each: the sphere through 84 grid
+  // points (lattice50) E 82.6 -> 44.7; a starfish of five thin arms (starfish60, 18.5k
+  // faces) NOT_CONVERGED at E 67.5 after 337 iterations, 6.3 s -> OK, E 62.58, 84
+  // iterations, 1.8 s; starfish100 258 -> 112 iterations, E 82.9 -> 63.05. Measured against
+  // the floor with the continuation's own activation (1e-4): starfish100 168 iterations;
+  // with 1e-2 110, 3e-1 122; in the floor stage too, 1e-1: 162.
+  static constexpr double floored_activation = 1e-1;
   // The folded iterates in a row after which the input's optimistic stage stops, after a
   // level whose own optimistic stage was rejected (elsewhere `Newton_options`' 5). There the
   // input's stage folds from its first iterate on the protrusion meshes and its iterations
@@ -720,6 +736,13 @@ private:
   // with a rejected level, and none of the corpus did. Defects corpus: 6 of 7 meshes 26.3 ->
   // 21.9 s; bull@loop2@slivers200 107 -> 144 iterations, its floor stage sliding (9 -> 49
   // iterations; with 1, 3 or 5 folded iterates 7, 31, 9: the slide is chaotic, not caused).
+  // Isosurfaces (marching cubes or tetrahedra) after such a level fold 8772, 2200, 353, 4 and
+  // then no faces (metaballs180, Combined), where the protrusions' folds stay (man@loop1:
+  // 37819, 36309, 36247, ...; cow@loop2 7210, 4520, 2623): a folded iterate with at most half
+  // the folded faces of the one before does not count (`count_unfolding_iterates`).
+  // metaballs180: 250 -> 33 iterations, 107 -> 6.4 s; CGAL's meshes and their subdivisions
+  // took the same paths. Counting them on every level and stage instead prolonged some
+  // rejected stages (armadillo's 13.5k level, Tutte, 6 -> 8 iterations) for nothing.
   static constexpr std::size_t input_max_folded_iterations = 2;
   // The rings around the faces under the floor that the floor patch frees (`lift_locally()`).
   static constexpr int patch_rings = 3;

@@ -58,7 +58,14 @@ struct Fold_barrier
     return std::max(d.input_area, determinant_floor * 0.25 / floor);
   }
 
-  using Face_data = Jacobian_face_data;
+  /// The input triangle's data, and its `Reference_triangle::area_floor`.
+  struct Face_data : Jacobian_face_data
+  {
+    double area_floor = 0;
+
+    Face_data() = default;
+    explicit Face_data(const Reference_triangle& r) : Jacobian_face_data(r), area_floor(r.area_floor) {}
+  };
   Face_data face_data(const Reference_triangle& r) const { return Face_data(r); }
 
   template <class Number>
@@ -82,9 +89,18 @@ struct Fold_barrier
   /// percent of Newton's in the squeezed protrusions. The weak layer lets the model see them
   /// one step earlier without changing the minimum much (see the fold-free continuation in
   /// `Spherical_parameterizer_3`).
+  /// With `floored_activation`, a face whose input area is under its area floor is measured
+  /// as a face of the floor's area, and held from `floored_activation` on: see
+  /// `Newton_options::floored_activation`.
   template <class Number>
-  static Number energy(const Chord_triangle<Number>& t, const Face_data& d, double activation, double outer_weight = 0)
+  static Number energy(const Chord_triangle<Number>& t, const Face_data& d, double activation, double outer_weight = 0,
+                       double floored_activation = 0)
   {
+    if(floored_activation > 0 && d.area_floor > d.input_area) {
+      Face_data floored = d;
+      floored.input_area = d.area_floor;
+      return energy(t, floored, std::max(activation, floored_activation), outer_weight);
+    }
     const Number det = t.determinant();
     if(!(value_of(det) > 0))
       return Number(std::numeric_limits<double>::infinity());

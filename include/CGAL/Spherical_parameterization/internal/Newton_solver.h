@@ -68,6 +68,13 @@ struct Newton_options
   double fold_floor = 1e-7;
   /// With `keep_fold_free`: the weight of the barrier's weak outer layer (`Fold_barrier::energy()`).
   double outer_barrier_weight = 0;
+  /// With `keep_fold_free`, if positive: the barrier measures a face whose input area is under
+  /// its `Reference_triangle::area_floor` (the near-duplicate vertices of isosurfaces) as a
+  /// face of the floor's area, and holds it from this activation on. Measured by its own tiny
+  /// area, such a face is held only at a determinant of 1e-12, so the Newton steps, which
+  /// nothing else keeps from flipping it, squeeze it about 5 times each on the way there,
+  /// each capped to a few percent (see `Spherical_parameterizer_3`'s continuation).
+  double floored_activation = 0;
   bool stop_when_fold_free = false;  ///< a start-up stage: stop at the first fold-free map
   /// When set, receives the last iterate (or the start) on which every face is positively
   /// oriented: where a fold-free stage can take over after a stage that may fold.
@@ -75,6 +82,10 @@ struct Newton_options
   /// With `fold_free_iterate`: stop (`Newton_stop::FOLDED`) after this many folded iterates
   /// in a row, a fold that the energy does not undo by itself.
   std::size_t max_folded_iterations = 5;
+  /// With `fold_free_iterate`: whether a folded iterate with at most half the folded faces of
+  /// the iterate before counts against `max_folded_iterations` (false: the energy is undoing
+  /// the fold by itself).
+  bool count_unfolding_iterates = true;
   bool projected_hessian = false;  ///< project each face's Hessian to PSD instead of shifting the exact one
   /// Iterations that solve only the 2x2 diagonal blocks of the Hessian (block Jacobi) before
   /// Newton: a cheap smoother of the local error a vertex split leaves.
@@ -166,6 +177,7 @@ public:
     with_barrier_ = options.keep_fold_free;
     floor_ = options.fold_floor;
     outer_weight_ = options.outer_barrier_weight;
+    floored_activation_ = options.floored_activation;
     first_shift_ = options.first_shift;
     boost_search_ = options.boost_search;
     double e = total_energy(energy, x);
@@ -177,6 +189,7 @@ public:
     if(options.fold_free_iterate && count_bad_faces(*faces_, x) == 0)
       *options.fold_free_iterate = x;
     std::size_t folded = 0;  // consecutive folded iterates
+    std::size_t last_bad = 0;  // folded and degenerate faces of the last iterate
     Points trial(x.size());
     std::vector<double> history{e};  // energy after each iteration, for the stall test
     double last_full_decrement = 0;  // of the last iteration if its step was a full Newton step, else 0
@@ -227,7 +240,10 @@ public:
       x.swap(trial);
       capped_steps = capped ? capped_steps + 1 : 0;
       if(options.fold_free_iterate) {
-        folded = count_bad_faces(*faces_, x) == 0 ? 0 : folded + 1;
+        const std::size_t bad = count_bad_faces(*faces_, x);
+        const bool unfolding = 2 * bad <= last_bad;
+        folded = bad == 0 ? 0 : (unfolding && !options.count_unfolding_iterates ? folded : folded + 1);
+        last_bad = bad;
         if(folded == 0)
           *options.fold_free_iterate = x;
         else if(folded > options.max_folded_iterations) {
@@ -460,7 +476,7 @@ private:
   {
     const auto& t = (*faces_)[f];
     return Fold_barrier::energy(Chord_triangle<Number>(x[t[0]], x[t[1]], x[t[2]]), barrier_data_[f], floor_,
-                                outer_weight_);
+                                outer_weight_, floored_activation_);
   }
 
   void build_pattern()
@@ -761,6 +777,7 @@ private:
   std::vector<Fold_barrier::Face_data> barrier_data_;
   double floor_ = 0;  // the barrier's activation
   double outer_weight_ = 0;
+  double floored_activation_ = 0;
   Matrix matrix_;
   std::vector<int> entry_index_;
   std::vector<int> diagonal_index_;
