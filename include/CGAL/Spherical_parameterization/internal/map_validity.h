@@ -59,14 +59,29 @@ inline Map_validity check_map(const Faces& faces, const Points& x)
   return v;
 }
 
+/// True if the face `t` is flipped or degenerate.
+inline bool is_bad_face(const std::array<int, 3>& t, const Points& x)
+{
+  const double det = x[t[0]].dot((x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]));
+  return !(det > degenerate_determinant);
+}
+
 /// The number of faces that are flipped or degenerate: 0 for a fold-free map.
 inline std::size_t count_bad_faces(const Faces& faces, const Points& x)
 {
   std::size_t bad = 0;
-  for(const auto& t : faces) {
-    const double det = x[t[0]].dot((x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]));
-    if(!(det > degenerate_determinant)) ++bad;
-  }
+  for(const auto& t : faces)
+    bad += is_bad_face(t, x);
+  return bad;
+}
+
+/// The faces that are flipped or degenerate.
+inline std::vector<int> bad_faces(const Faces& faces, const Points& x)
+{
+  std::vector<int> bad;
+  for(std::size_t f = 0; f < faces.size(); ++f)
+    if(is_bad_face(faces[f], x))
+      bad.push_back(int(f));
   return bad;
 }
 
