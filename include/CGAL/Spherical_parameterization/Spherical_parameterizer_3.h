@@ -775,11 +775,16 @@ private:
   // then no faces (metaballs180, Combined), where the protrusions' folds stay (man@loop1:
   // 37819, 36309, 36247, ...; cow@loop2 7210, 4520, 2623): a folded iterate with at most half
   // the folded faces of the one before does not count (`count_unfolding_iterates`).
-  // metaballs180: 250 -> 33 iterations, 107 -> 6.4 s; CGAL's meshes and their subdivisions
-  // took the same paths. Counting them on every level and stage instead prolonged some
-  // rejected stages (armadillo's 13.5k level, Tutte, 6 -> 8 iterations) for nothing.
+  // metaballs180: 250 -> 33 iterations, 107 -> 6.4 s; CGAL's meshes (3 energies) and their
+  // subdivisions at the held-out size took the same paths. Counting them on every level and
+  // stage instead prolonged some rejected stages (armadillo's 13.5k level, Tutte, 6 -> 8
+  // iterations) for nothing.
   static constexpr std::size_t input_max_folded_iterations = 2;
-  static constexpr double max_untangled_share = 0.05;  // see `untangle_locally()`
+  // `untangle_locally()` is for a few flipped faces: not for the protrusions' thousands (2.6k
+  // to 46k at the held-out size), whose patch would be much of the mesh and whose fold the
+  // continuation undoes; 3 rounds of the untangling energy, where the patches of the
+  // isosurfaces untangled in the first or not at all.
+  static constexpr double max_untangled_share = 0.05;
   static constexpr int local_untangling_rounds = 3;
   // The rings around the faces under the floor that the floor patch frees (`lift_locally()`).
   static constexpr int patch_rings = 3;
