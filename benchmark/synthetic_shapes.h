@@ -225,19 +225,22 @@ CGAL::Surface_mesh<Point> metaballs(int resolution)
 template <class Point>
 CGAL::Surface_mesh<Point> starfish(int resolution)
 {
-  // Each arm: the unit direction's unnormalized components, its length and radius.
-  const std::array<std::array<double, 5>, 5> arms{{{1.0, 0.1, 0.0, 0.95, 0.1},
-                                                   {-0.3, 1.0, 0.2, 0.9, 0.08},
-                                                   {-0.8, -0.6, 0.1, 0.95, 0.07},
-                                                   {0.4, -0.7, 0.6, 0.85, 0.06},
-                                                   {0.1, 0.2, -1.0, 0.9, 0.09}}};
+  struct Arm
+  {
+    Vec axis;  // unit
+    double length, radius;
+  };
+  const std::array<Arm, 5> arms{{{normalized(Vec{1.0, 0.1, 0.0}), 0.95, 0.1},
+                                 {normalized(Vec{-0.3, 1.0, 0.2}), 0.9, 0.08},
+                                 {normalized(Vec{-0.8, -0.6, 0.1}), 0.95, 0.07},
+                                 {normalized(Vec{0.4, -0.7, 0.6}), 0.85, 0.06},
+                                 {normalized(Vec{0.1, 0.2, -1.0}), 0.9, 0.09}}};
   auto field = [arms](const Vec& p) {
     double largest = 0.3 - std::sqrt(dot(p, p));  // the body
-    for(const auto& a : arms) {
-      const Vec axis = normalized(Vec{a[0], a[1], a[2]});
-      const double along = std::clamp(dot(p, axis), 0.0, a[3]);
-      const Vec off{p[0] - along * axis[0], p[1] - along * axis[1], p[2] - along * axis[2]};
-      largest = std::max(largest, a[4] - std::sqrt(dot(off, off)));
+    for(const Arm& a : arms) {
+      const double along = std::clamp(dot(p, a.axis), 0.0, a.length);
+      const Vec off{p[0] - along * a.axis[0], p[1] - along * a.axis[1], p[2] - along * a.axis[2]};
+      largest = std::max(largest, a.radius - std::sqrt(dot(off, off)));
     }
     return largest - 1e-7 * std::sqrt(2.0);  // the level off the grid's values
   };
@@ -251,7 +254,7 @@ template <class Point>
 CGAL::Surface_mesh<Point> lattice_sphere(double squared_radius)
 {
   const int half = int(std::ceil(std::sqrt(squared_radius))) + 1;
-  auto field = [squared_radius](const Vec& p) { return squared_radius + 1e-5 - (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]); };
+  auto field = [squared_radius](const Vec& p) { return squared_radius + 1e-5 - dot(p, p); };
   return marching_tetrahedra<Point>(field, 2 * half, Vec{-double(half), -double(half), -double(half)}, 1.0);
 }
 

@@ -489,8 +489,8 @@ private:
     level.gather(x, y);
     if(!untangle(run, level, y, visitor, local_untangling_rounds) || level.has_fold(y))
       return false;
-    level.scatter(y, x);
-    return !input_.has_fold(x);
+    level.scatter(y, x);  // every folded face was a seed, so the patch held them all
+    return true;
   }
 
   // Garanzha et al.'s continuation: unfold with a finite energy, then tighten the barrier.
