@@ -10,7 +10,8 @@
 //             [--max-seconds S] [--no-fork] [--same-input] [--json FILE] [--csv FILE] MESH...
 // A MESH ending in "@loopN" (e.g. bunny00.off@loop2) is Loop-subdivided N times after reading;
 // "@sliversN" and "@needlesN" then add N nearly degenerate faces of each kind (mesh_defects.h).
-// "tube:capsuleL" and "tube:helixT" are long tubes built in code (synthetic_shapes.h), and
+// "tube:capsuleL" and "tube:helixT" are long tubes built in code (synthetic_shapes.h),
+// "tube:cylinderN" a CAD-like cylinder of needles with fan caps, and
 // "iso:metaballsN", "iso:starfishN" and "iso:latticeR" isosurfaces made by marching tetrahedra.
 //
 // Each run is done in a forked child process, so that its peak memory (ru_maxrss of the
@@ -92,7 +93,9 @@ void usage(const char* program)
                "A MESH path ending in @loopN is Loop-subdivided N times before timing; @sliversN and\n"
                "@needlesN then split N faces into slivers or needles (e.g. cow.off@needles50).\n"
                "A MESH tube:capsuleL or tube:helixT is built: a straight tube L radii long, or a thin\n"
-               "tube coiled T times (e.g. tube:helix4, 112k faces). A MESH iso:metaballsN, iso:starfishN or\n"
+               "tube coiled T times (e.g. tube:helix4, 112k faces); tube:cylinderN is a cylinder with N\n"
+               "vertices on each of five rings and fan caps, as CAD tessellations make it (needles).\n"
+               "A MESH iso:metaballsN, iso:starfishN or\n"
                "iso:latticeR is an isosurface by marching tetrahedra: blobs, or a ball with five thin arms,\n"
                "on a grid of N cubes a side, or the sphere of squared radius R through points of the\n"
                "integer grid (clusters of near-duplicate vertices).\n";
@@ -516,7 +519,7 @@ struct Mesh_input
 };
 
 /// A MESH starting with one of these is built in code (synthetic_shapes.h): `tube:capsule150`,
-/// `tube:helix4`, `iso:metaballs130`, `iso:starfish100`, `iso:lattice150`.
+/// `tube:helix4`, `tube:cylinder2000`, `iso:metaballs130`, `iso:starfish100`, `iso:lattice150`.
 const std::array<std::string, 2> synthetic_prefixes{"tube:", "iso:"};
 
 /// The length of `file`'s prefix of a shape built in code, 0 if it is a file.

@@ -68,8 +68,10 @@ large_corpus=(cow@loop2 triceratops@loop2 bear@loop1 retinal@loop2 dino@loop2 fa
 defects_corpus=(cow@needles50 triceratops@needles50 bull@slivers50 man@slivers50 cow@loop2@needles200
                 bull@loop2@slivers200 man@loop1@needles100)
 # Long tubes, straight and coiled, 3k to 112k faces (see synthetic_shapes.h): their energies'
-# infimum squeezes the tube to nothing, so their maps end on the fold barrier's floor.
-tubes_corpus=(tube:capsule10 tube:capsule40 tube:capsule150 tube:helix1 tube:helix2 tube:helix4)
+# infimum squeezes the tube to nothing, so their maps end on the fold barrier's floor. And
+# short cylinders as CAD tessellations make them, 3k and 20k faces: needles and fan caps.
+tubes_corpus=(tube:capsule10 tube:capsule40 tube:capsule150 tube:helix1 tube:helix2 tube:helix4
+              tube:cylinder300 tube:cylinder2000)
 # Isosurfaces of scans and segmentations (marching cubes or tetrahedra): clusters of
 # near-coincident vertices where the surface passes close to a grid point, tiny faces and
 # needles around them (see synthetic_shapes.h); the starfish's thin arms are protrusions too.

@@ -49,13 +49,15 @@ struct Centre_line
   double length = 0;
 };
 
-/// A tube of `radius` around `line`, `around` vertices per ring, rings about as far apart as
-/// the vertices of a ring, closed by a fan at each end; faces oriented outwards.
+/// A tube of `radius` around `line`, `around` vertices per ring, `rings` rings (by default
+/// about as far apart as the vertices of a ring), closed by a fan at each end; faces oriented
+/// outwards.
 template <class Point>
-CGAL::Surface_mesh<Point> tube(const Centre_line& line, double radius, int around)
+CGAL::Surface_mesh<Point> tube(const Centre_line& line, double radius, int around, int rings = 0)
 {
   const double pi = std::acos(-1.0);
-  const int rings = 1 + int(std::ceil(line.length / (2 * pi * radius / around)));
+  if(rings < 2)
+    rings = 1 + int(std::ceil(line.length / (2 * pi * radius / around)));
   CGAL::Surface_mesh<Point> mesh;
   using Vertex = typename CGAL::Surface_mesh<Point>::Vertex_index;
   std::vector<Vertex> ring_vertex;
@@ -84,16 +86,31 @@ CGAL::Surface_mesh<Point> tube(const Centre_line& line, double radius, int aroun
   return mesh;
 }
 
-/// A straight tube of radius 1 and the given length, 32 vertices around.
-template <class Point>
-CGAL::Surface_mesh<Point> capsule(double length)
+/// The segment from the origin up the z axis, of the given length.
+inline Centre_line straight_line(double length)
 {
   Centre_line line;
   line.point = [length](double s) { return Vec{0, 0, length * s}; };
   line.first_normal = [](double) { return Vec{1, 0, 0}; };
   line.second_normal = [](double) { return Vec{0, 1, 0}; };
   line.length = length;
-  return tube<Point>(line, 1, 32);
+  return line;
+}
+
+/// A straight tube of radius 1 and the given length, 32 vertices around.
+template <class Point>
+CGAL::Surface_mesh<Point> capsule(double length)
+{
+  return tube<Point>(straight_line(length), 1, 32);
+}
+
+/// A cylinder as CAD tessellations make it: radius 1, length 2, `around` vertices on each of
+/// only five rings, so that its sides are needles (24:1 for 300 around), and a fan of
+/// `around` faces on each cap.
+template <class Point>
+CGAL::Surface_mesh<Point> cad_cylinder(int around)
+{
+  return tube<Point>(straight_line(2), 1, around, 5);
 }
 
 /// A tube of radius 0.5 coiled `turns` times around the z axis (coil radius 3, rising 3 per
@@ -258,12 +275,13 @@ CGAL::Surface_mesh<Point> lattice_sphere(double squared_radius)
   return marching_tetrahedra<Point>(field, 2 * half, Vec{-double(half), -double(half), -double(half)}, 1.0);
 }
 
-/// The shape named `capsuleL`, `helixT`, `metaballsN`, `starfishN` or `latticeR` (positive
-/// numbers: length, turns, grid resolution, squared radius), or nothing.
+/// The shape named `capsuleL`, `helixT`, `cylinderN`, `metaballsN`, `starfishN` or `latticeR`
+/// (positive numbers: length, turns, vertices around, grid resolution, squared radius), or
+/// nothing.
 template <class Point>
 std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
 {
-  for(const std::string kind : {"capsule", "helix", "metaballs", "starfish", "lattice"}) {
+  for(const std::string kind : {"capsule", "helix", "cylinder", "metaballs", "starfish", "lattice"}) {
     if(name.compare(0, kind.size(), kind) != 0)
       continue;
     const std::string number = name.substr(kind.size());
@@ -273,6 +291,7 @@ std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
       return std::nullopt;
     if(kind == "capsule") return capsule<Point>(value);
     if(kind == "helix") return helix<Point>(value);
+    if(kind == "cylinder") return value >= 3 ? std::optional(cad_cylinder<Point>(int(value))) : std::nullopt;
     if(value > 400) return std::nullopt;  // a grid of 400^3 points is already 512 MB
     if(kind == "metaballs") return metaballs<Point>(int(value));
     if(kind == "starfish") return starfish<Point>(int(value));
