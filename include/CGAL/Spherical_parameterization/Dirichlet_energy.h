@@ -16,12 +16,17 @@ namespace Spherical_parameterization {
 /// \ingroup PkgSphericalParameterizationEnergies
 /// The cotangent (Dirichlet) energy of Pinkall and Polthier,
 /// `(cot A |b-c|^2 + cot B |c-a|^2 + cot C |a-b|^2) / 2`, with the input angles clamped to
-/// `[5, 85]` degrees as in Friedel et al., Section 3, so that no weight is negative.
+/// `[min_angle, max_angle]`. By default only obtuse angles are clamped, to 90 degrees, so
+/// that no weight is negative. Friedel et al. (Section 3) clamp to `[5, 85]` degrees:
+/// `Dirichlet_energy{5 * M_PI / 180, 85 * M_PI / 180}`. That lower clamp weighs the short
+/// edge of a needle too little against its long ones: on a cylinder of long thin triangles
+/// with fan caps (3000 faces) the map's mean quasi-conformal ratio was 6.95, against 1.10
+/// now. `Dirichlet_energy{0, M_PI}` takes the exact cotangents, negative ones included.
 /// \cgalModels `SphericalEnergy`
 struct Dirichlet_energy
 {
-  double min_angle = 5 * M_PI / 180;   ///< lower clamp of the input angles, radians
-  double max_angle = 85 * M_PI / 180;  ///< upper clamp of the input angles, radians
+  double min_angle = 0;                ///< lower clamp of the input angles, radians
+  double max_angle = 90 * M_PI / 180;  ///< upper clamp of the input angles, radians
 
   /// \cond SKIP_IN_MANUAL
   using Face_data = std::array<double, 3>;  // half cotangent weight of each edge
