@@ -12,7 +12,7 @@
 #   --defects        instead, meshes with nearly degenerate faces added (MESH@sliversN,
 #                    MESH@needlesN), 1 repeat, Combined unless --energies; results in
 #                    benchmark/results/defects/
-#   --tubes          instead, long tubes built by the benchmark (tube:capsuleL, tube:helixT;
+#   --tubes          instead, tubes built by the benchmark (tube:capsuleL, tube:helixT, tube:cylinderN;
 #                    no data needed), 1 repeat, Combined unless --energies; results in
 #                    benchmark/results/tubes/
 #   --isosurfaces    instead, isosurfaces by marching tetrahedra built by the benchmark
