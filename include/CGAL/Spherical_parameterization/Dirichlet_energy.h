@@ -18,10 +18,11 @@ namespace Spherical_parameterization {
 /// `(cot A |b-c|^2 + cot B |c-a|^2 + cot C |a-b|^2) / 2`, with the input angles clamped to
 /// `[min_angle, max_angle]`. By default only obtuse angles are clamped, to 90 degrees, so
 /// that no weight is negative. Friedel et al. (Section 3) clamp to `[5, 85]` degrees:
-/// `Dirichlet_energy{5 * M_PI / 180, 85 * M_PI / 180}`. That lower clamp weighs the short
-/// edge of a needle too little against its long ones: on a cylinder of long thin triangles
-/// with fan caps (3000 faces) the map's mean quasi-conformal ratio was 6.95, against 1.10
-/// now. `Dirichlet_energy{0, M_PI}` takes the exact cotangents, negative ones included.
+/// `Dirichlet_energy{5 * M_PI / 180, 85 * M_PI / 180}`. That clamp weighs the short edge of
+/// a needle too little (cot 5 degrees) against its long ones (cot 85 degrees instead of about
+/// 0): on a cylinder of long thin triangles with fan caps (3000 faces) the map's mean
+/// quasi-conformal ratio was 6.95, against 1.10 now. `Dirichlet_energy{0, M_PI}` takes the
+/// exact cotangents, negative ones included.
 /// \cgalModels `SphericalEnergy`
 struct Dirichlet_energy
 {
