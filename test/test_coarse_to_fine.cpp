@@ -276,6 +276,30 @@ void test_mobius_boost()
   report("boost steps: the energy they return is the boosted map's", reported);
   report("boost steps: a boosted map comes back to the unboosted energy (rel 1e-6)",
          (e - unboosted) <= 1e-6 * unboosted, "start " + str(start, 8) + ", end " + str(e, 8) + ", unboosted " + str(unboosted, 8));
+
+  // An energy quartic around the map boosted by 0.5 towards e_z: the Newton step of the finite
+  // differences goes less than half the way (0.22 on 2000 points spread over the sphere); one
+  // boost step must go past 0.3 by doubling its step while the energy keeps falling (0.44
+  // there), and report the map's energy.
+  I::Points spread;  // a Fibonacci spiral
+  for(int i = 0; i < 2000; ++i) {
+    const double z = -1 + 2 * (i + 0.5) / 2000, r = std::sqrt(1 - z * z), angle = 2.39996 * i;
+    spread.emplace_back(r * std::cos(angle), r * std::sin(angle), z);
+  }
+  I::Points target = spread;
+  for(auto& p : target) p = I::mobius_boost(Eigen::Vector3d(0, 0, 0.5), p);
+  const auto quartic = [&](const I::Points& y) {
+    double sum = 0;
+    for(std::size_t v = 0; v < y.size(); ++v) sum += (y[v] - target[v]).squaredNorm() * (y[v] - target[v]).squaredNorm();
+    return sum;
+  };
+  I::Points slid = spread, boosted_03 = spread;
+  for(auto& p : boosted_03) p = I::mobius_boost(Eigen::Vector3d(0, 0, 0.3), p);
+  double slide = quartic(slid);
+  const bool moved = I::boost_step(slid, quartic, slide);
+  report("boost steps: one step follows a slide past its Newton step (energy under that of a boost of 0.3)",
+         moved && slide < quartic(boosted_03) && slide == quartic(slid),
+         "after one step " + str(slide, 8) + ", boost of 0.3 " + str(quartic(boosted_03), 8));
 }
 
 // The floor patch: the neighbourhood of the faces a fold barrier holds, minimized with the

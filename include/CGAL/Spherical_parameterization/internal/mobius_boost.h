@@ -25,6 +25,28 @@ inline Eigen::Vector3d mobius_boost(const Eigen::Vector3d& b, const Eigen::Vecto
   return (((2 + 2 * bx) * b + (1 - bb) * x) / (1 + 2 * bx + bb)).normalized();
 }
 
+/// After a full boost `step` of energy `e` was accepted (the map in `y`, written by
+/// `boosted`): the step doubled while that lowers the energy, at most 4 times and up to a
+/// boost of norm 0.9. Returns the energy of the map left in `y`. The energies slide along the
+/// boosts much farther than the Newton step of their finite differences goes (bunny00,
+/// Dirichlet: 47 -> 31 iterations, the same minimum).
+template <class Boosted>
+double extend_boost(Eigen::Vector3d step, double e, const Boosted& boosted, Points& y)
+{
+  Points accepted(y.size());
+  for(int k = 0; k < 4 && 2 * step.norm() <= 0.9; ++k) {
+    accepted.swap(y);  // y is overwritten by the next try
+    step *= 2;
+    const double longer = boosted(step);
+    if(!(longer < e)) {
+      y.swap(accepted);
+      break;
+    }
+    e = longer;
+  }
+  return e;
+}
+
 /// One Newton step on the three parameters of a boost applied to the whole map `x`, with a
 /// backtracking line search on `energy(points)` (a callable; `+inf` where the map is not
 /// admissible). The conformal energies (Dirichlet, and Tutte and MIPS nearly so) are almost
@@ -65,7 +87,9 @@ bool boost_step(Points& x, const EnergyFunction& energy, double& current)
   if(step.norm() > 0.5)  // stay well inside the ball
     step *= 0.5 / step.norm();
   for(int k = 0; k < 20; ++k, step *= 0.5) {
-    if(const double e = boosted(step); e < current + 1e-4 * gradient.dot(step)) {
+    if(double e = boosted(step); e < current + 1e-4 * gradient.dot(step)) {
+      if(k == 0)
+        e = extend_boost(step, e, boosted, y);
       x.swap(y);
       current = e;
       return true;
