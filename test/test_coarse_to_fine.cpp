@@ -300,18 +300,6 @@ void test_mobius_boost()
   report("boost steps: one step follows a slide past its Newton step (energy under that of a boost of 0.3)",
          moved && slide < quartic(boosted_03) && slide == quartic(slid),
          "after one step " + str(slide, 8) + ", boost of 0.3 " + str(quartic(boosted_03), 8));
-
-  // Repeated boost steps: past a bar of 0 the first step's gain calls a second one, which
-  // gains less and ends the slide; past a bar above the first gain the slide is one step.
-  I::Points repeated = spread, single = spread;
-  double repeated_energy = quartic(repeated), single_energy = repeated_energy;
-  const int repeats = I::slide_along_boosts(repeated, quartic, repeated_energy, 0.0, 0.0);
-  const int singles = I::slide_along_boosts(single, quartic, single_energy, 2 * (quartic(spread) - slide), 0.0);
-  report("boost slide: a step that gained more than the bar is followed by another, which lowers the energy",
-         repeats == 2 && repeated_energy < slide && repeated_energy == quartic(repeated),
-         std::to_string(repeats) + " steps to " + str(repeated_energy, 8) + ", one step " + str(slide, 8));
-  report("boost slide: a step that gained less than the bar ends it", singles == 1 && single_energy == slide,
-         std::to_string(singles) + " steps");
 }
 
 // The floor patch: the neighbourhood of the faces a fold barrier holds, minimized with the

@@ -199,11 +199,10 @@ public:
       if(out.iterations >= options.max_iterations) { out.stop = Newton_stop::ITERATION_CAP; break; }
       if(Clock::now() > options.deadline) { out.stop = Newton_stop::TIME_LIMIT; break; }
 
-      const double start_threshold = options.tolerance * std::abs(e + options.held_energy);
-      if(boosts.skip(start_threshold))
+      if(boosts.skip(options.tolerance * std::abs(e + options.held_energy)))
         ++boosts.skipped;
       else
-        boosts.record(boost_gain(energy, x, e, boosts.last_decrease, start_threshold));
+        boosts.record(boost_gain(energy, x, e));
       compute_bases(x);
       Vector d;
       const bool smoothing = out.iterations < options.smoothing_iterations;
@@ -284,7 +283,7 @@ public:
       const bool quadratic_tail =
         model_held && (decrement <= 10 * threshold ||
                        (options.predict_convergence && predicted <= 1e-2 * threshold));
-      if(quadratic_tail && options.predict_convergence && boost_gain(energy, x, e, decrease, threshold) > threshold) {
+      if(quadratic_tail && options.predict_convergence && boost_gain(energy, x, e) > threshold) {
         out.energy = e;
         continue;
       }
@@ -456,22 +455,18 @@ private:
     void record(double gain) { last_gain = gain; skipped = 0; }
   };
 
-  // Moebius boost steps if the minimization makes them: what they gain (the map and its
+  // One Moebius boost step if the minimization makes them: what it gains (the map and its
   // energy `e` updated), 0 without boost steps. Before every iteration, and before a stop on
   // a predicted decrement: the decrement leaves the boosts out, and the conformal energies
   // slide along them (Dirichlet at 302k faces stopped 2e-4 of its energy above its minimum
-  // on a decrement of 1.5e-3). More than one step while each gains more than the last and
-  // the first more than `newton_decrease`, the last Newton iteration's (`slide_along_boosts()`;
-  // none after the first iteration, whose steps come from the last level's map).
+  // on a decrement of 1.5e-3).
   template <class Energy>
-  double boost_gain(const Spherical_energy<Energy>& energy, Points& x, double& e, double newton_decrease,
-                    double threshold)
+  double boost_gain(const Spherical_energy<Energy>& energy, Points& x, double& e)
   {
     if(!boost_search_ || free_ != n_)
       return 0;
     const double before = e;
-    const double bar = newton_decrease > 0 ? newton_decrease : std::numeric_limits<double>::infinity();
-    slide_along_boosts(x, [&](const Points& y) { return total_energy(energy, y); }, e, bar, threshold);
+    boost_step(x, [&](const Points& y) { return total_energy(energy, y); }, e);
     return before - e;
   }
 

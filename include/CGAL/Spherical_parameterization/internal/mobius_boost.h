@@ -98,30 +98,6 @@ bool boost_step(Points& x, const EnergyFunction& energy, double& current)
   return false;
 }
 
-/// Boost steps (`boost_step()`) for as long as the slide along the boosts speeds up: the first
-/// step always, each next one if the last gained more than `bar` and than `negligible`, `bar`
-/// then becoming that gain; at most `max_steps`. With `bar` the decrease of the last Newton
-/// iteration, the steps repeat only where the boosts move the map more than Newton's steps do:
-/// Tutte on bunny00 slid 0.05 to 0.12 per boost step against Newton's 1e-3 per iteration, one
-/// boost step per iteration. Returns the number of steps that moved the map.
-template <class EnergyFunction>
-int slide_along_boosts(Points& x, const EnergyFunction& energy, double& current, double bar, double negligible,
-                       int max_steps = 5)
-{
-  int moved = 0;
-  while(moved < max_steps) {
-    const double before = current;
-    if(!boost_step(x, energy, current))
-      break;
-    ++moved;
-    const double gain = before - current;
-    if(!(gain > bar && gain > negligible))
-      break;
-    bar = gain;
-  }
-  return moved;
-}
-
 } // namespace internal
 } // namespace Spherical_parameterization
 } // namespace CGAL
