@@ -342,11 +342,12 @@ private:
     // iterations, Tutte 38 -> 42).
     // The last stage, on the floor, only ever on the input; its slow capped tail may stop it.
     auto floor_stage = [&] {
+      const internal::Newton_options before = run.options;
       run.options.stop_slow_capped_tail = true;
       run.options.outer_barrier_weight = floor_outer_barrier_weight;
       const bool done = minimize(energy_, stage, true, run, level, x, visitor);
-      run.options.outer_barrier_weight = 0;
-      run.options.stop_slow_capped_tail = false;
+      run.options.outer_barrier_weight = before.outer_barrier_weight;
+      run.options.stop_slow_capped_tail = before.stop_slow_capped_tail;
       return done && lift_deep_faces(run, x, visitor);
     };
     if(is_input && fold_free_minimum) {
