@@ -12,7 +12,7 @@
 // "@sliversN" and "@needlesN" then add N nearly degenerate faces of each kind (mesh_defects.h).
 // "tube:capsuleL" and "tube:helixT" are long tubes built in code (synthetic_shapes.h),
 // "tube:cylinderN" a CAD-like cylinder of needles with fan caps, and
-// "iso:metaballsN", "iso:starfishN" and "iso:latticeR" isosurfaces made by marching tetrahedra.
+// "iso:metaballsN", "iso:starfishN", "iso:cortexN" and "iso:latticeR" isosurfaces made by marching tetrahedra.
 //
 // Each run is done in a forked child process, so that its peak memory (ru_maxrss of the
 // child) belongs to that run alone; see README.md.
@@ -95,9 +95,10 @@ void usage(const char* program)
                "A MESH tube:capsuleL or tube:helixT is built: a straight tube L radii long, or a thin\n"
                "tube coiled T times (e.g. tube:helix4, 112k faces); tube:cylinderN is a cylinder with N\n"
                "vertices on each of five rings and fan caps, as CAD tessellations make it (needles).\n"
-               "A MESH iso:metaballsN, iso:starfishN or\n"
-               "iso:latticeR is an isosurface by marching tetrahedra: blobs, or a ball with five thin arms,\n"
-               "on a grid of N cubes a side, or the sphere of squared radius R through points of the\n"
+               "A MESH iso:metaballsN, iso:starfishN,\n"
+               "iso:cortexN or iso:latticeR is an isosurface by marching tetrahedra: blobs, a ball with five\n"
+               "thin arms or a ball folded by narrow creases, on a grid of N cubes a side, or the sphere of\n"
+               "squared radius R through points of the\n"
                "integer grid (clusters of near-duplicate vertices).\n";
 }
 

@@ -74,10 +74,10 @@ tubes_corpus=(tube:capsule10 tube:capsule40 tube:capsule150 tube:helix1 tube:hel
               tube:cylinder300 tube:cylinder2000)
 # Isosurfaces of scans and segmentations (marching cubes or tetrahedra): clusters of
 # near-coincident vertices where the surface passes close to a grid point, tiny faces and
-# needles around them (see synthetic_shapes.h); the starfish's thin arms are protrusions too.
-# 17k to 219k faces.
+# needles around them (see synthetic_shapes.h); the starfish's thin arms are protrusions too,
+# the cortex's narrow creases a brain-like surface. 17k to 219k faces.
 isosurfaces_corpus=(iso:lattice150 iso:lattice300 iso:metaballs60 iso:metaballs100 iso:metaballs130 iso:metaballs180
-                    iso:starfish60 iso:starfish100 iso:starfish150)
+                    iso:starfish60 iso:starfish100 iso:starfish150 iso:cortex60 iso:cortex100)
 repeats=""  # the benchmark's default: 3, or 1 above 200k faces
 if [ "$large" = 1 ]; then
   corpus=("${large_corpus[@]}")

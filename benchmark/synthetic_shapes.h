@@ -264,6 +264,25 @@ CGAL::Surface_mesh<Point> starfish(int resolution)
   return marching_tetrahedra<Point>(field, resolution, Vec{-1.1, -1.1, -1.1}, 2.2 / resolution);
 }
 
+/// A ball with deep narrow folds, like a brain's cortex (medical imaging's genus-0 surfaces):
+/// the radius in each direction d is 0.7 + 0.1 sqrt(s^2 + 1) with s = sin 9 d_x + sin 9 d_y +
+/// sin 9 d_z, so the valleys (where s is 0) form one connected network of narrow creases,
+/// 0.22 deep, their bottoms rounded over about 0.07 (a sharp V left bubbles of air in the
+/// marching tetrahedra's creases). Star-shaped, hence one closed genus-0 surface; by `marching_tetrahedra()`
+/// on a grid of `resolution` cubes a side in [-1.1, 1.1]^3.
+template <class Point>
+CGAL::Surface_mesh<Point> cortex(int resolution)
+{
+  auto field = [](const Vec& p) {
+    const double r = std::sqrt(dot(p, p));
+    if(r < 1e-9)
+      return 1.0;
+    const double s = std::sin(9 * p[0] / r) + std::sin(9 * p[1] / r) + std::sin(9 * p[2] / r);
+    return 0.7 + 0.1 * std::sqrt(s * s + 1) - r - 1e-7 * std::sqrt(2.0);  // the level off the grid's values
+  };
+  return marching_tetrahedra<Point>(field, resolution, Vec{-1.1, -1.1, -1.1}, 2.2 / resolution);
+}
+
 /// The sphere of squared radius `squared_radius` (plus 1e-5) around a point of the integer
 /// grid, by `marching_tetrahedra()` on that grid: it passes 1e-5 away from every grid point
 /// on the sphere of that radius, so each of them is a cluster of near-coincident vertices.
@@ -275,13 +294,14 @@ CGAL::Surface_mesh<Point> lattice_sphere(double squared_radius)
   return marching_tetrahedra<Point>(field, 2 * half, Vec{-double(half), -double(half), -double(half)}, 1.0);
 }
 
-/// The shape named `capsuleL`, `helixT`, `cylinderN`, `metaballsN`, `starfishN` or `latticeR`
-/// (positive numbers: length, turns, vertices around, grid resolution, squared radius), or
+/// The shape named `capsuleL`, `helixT`, `cylinderN`, `metaballsN`, `starfishN`, `cortexN` or
+/// `latticeR` (positive numbers: length, turns, vertices around, grid resolution, squared
+/// radius), or
 /// nothing.
 template <class Point>
 std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
 {
-  for(const std::string kind : {"capsule", "helix", "cylinder", "metaballs", "starfish", "lattice"}) {
+  for(const std::string kind : {"capsule", "helix", "cylinder", "metaballs", "starfish", "cortex", "lattice"}) {
     if(name.compare(0, kind.size(), kind) != 0)
       continue;
     const std::string number = name.substr(kind.size());
@@ -295,6 +315,7 @@ std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
     if(value > 400) return std::nullopt;  // a grid of 400^3 points is already 512 MB
     if(kind == "metaballs") return metaballs<Point>(int(value));
     if(kind == "starfish") return starfish<Point>(int(value));
+    if(kind == "cortex") return cortex<Point>(int(value));
     return lattice_sphere<Point>(value);
   }
   return std::nullopt;
