@@ -363,9 +363,20 @@ private:
     // stage's start (starfish100, 52k faces: 111 -> 91 iterations, 7.2 -> 4.5 s, to a lower
     // energy; starfish150 21.8 -> 11.0 s). Where the patch does not untangle, its few
     // iterations are lost (cow Dirichlet 69 -> 70 iterations, the same minimum).
-    if(is_input && optimistic && folded && untangle_locally(run, x, visitor))
+    if(is_input && optimistic && folded && untangle_locally(run, level, x, visitor))
       return floor_stage();
-    x = std::move(fold_free);
+    // The same on a coarser level, whose optimistic stage may end folded next to its minimum
+    // by one face flipped from the first iterate on (cortex100, 40500 vertices): untangled
+    // locally, that minimum is the level's result if it is above the floor, else the
+    // continuation's start, rather than the stage's start (cortex100 Combined 42 -> 28
+    // iterations, metaballs180 43 -> 29, the same energies; see doc/NOTES.md, session 45).
+    const bool untangled = !is_input && optimistic && folded && untangle_locally(run, level, x, visitor);
+    if(untangled && level.solver->is_above_floor(x, floor)) {
+      run.optimistic_stage_rejected = false;
+      return !run.interrupted;
+    }
+    if(!untangled)
+      x = std::move(fold_free);
     // Continuation on the floor, from the last fold-free iterate of a rejected optimistic
     // stage (or on a coarser level): first 1000 times higher, to a loose tolerance, so that
     // the large moves happen while the squeezed faces are still large and well conditioned;
@@ -477,15 +488,16 @@ private:
     return level;
   }
 
-  // The input's folded faces untangled on their neighbourhood (`patch_rings` rings), the rest
-  // of the map held. True if the map is then fold-free; not tried (false) if the patch would
-  // free more than `max_untangled_share` of the vertices.
+  // The folded faces of the map `x` of `whole` (the input or a coarser level) untangled on
+  // their neighbourhood (`patch_rings` rings), the rest of the map held. True if the map is
+  // then fold-free; not tried (false) if the patch would free more than
+  // `max_untangled_share` of the vertices.
   template <class Visitor>
-  bool untangle_locally(Run& run, internal::Points& x, Visitor& visitor)
+  bool untangle_locally(Run& run, const Level& whole, internal::Points& x, Visitor& visitor)
   {
     internal::Floor_patch patch =
-      internal::make_floor_patch(input_.soup, internal::bad_faces(input_.soup.faces, x), patch_rings);
-    if(double(patch.free_vertices) > max_untangled_share * double(input_.number_of_vertices()))
+      internal::make_floor_patch(whole.soup, internal::bad_faces(whole.soup.faces, x), patch_rings);
+    if(double(patch.free_vertices) > max_untangled_share * double(whole.number_of_vertices()))
       return false;
     Level level = patch_level(std::move(patch));
     internal::Points y;
