@@ -95,10 +95,9 @@ void usage(const char* program)
                "A MESH tube:capsuleL or tube:helixT is built: a straight tube L radii long, or a thin\n"
                "tube coiled T times (e.g. tube:helix4, 112k faces); tube:cylinderN is a cylinder with N\n"
                "vertices on each of five rings and fan caps, as CAD tessellations make it (needles).\n"
-               "A MESH iso:metaballsN, iso:starfishN,\n"
-               "iso:cortexN or iso:latticeR is an isosurface by marching tetrahedra: blobs, a ball with five\n"
-               "thin arms or a ball folded by narrow creases, on a grid of N cubes a side, or the sphere of\n"
-               "squared radius R through points of the\n"
+               "A MESH iso:metaballsN, iso:starfishN, iso:cortexN or iso:latticeR is an isosurface by\n"
+               "marching tetrahedra: blobs, a ball with five thin arms or a ball folded by narrow creases,\n"
+               "on a grid of N cubes a side, or the sphere of squared radius R through points of the\n"
                "integer grid (clusters of near-duplicate vertices).\n";
 }
 

@@ -268,8 +268,8 @@ CGAL::Surface_mesh<Point> starfish(int resolution)
 /// the radius in each direction d is 0.7 + 0.1 sqrt(s^2 + 1) with s = sin 9 d_x + sin 9 d_y +
 /// sin 9 d_z, so the valleys (where s is 0) form one connected network of narrow creases,
 /// 0.22 deep, their bottoms rounded over about 0.07 (a sharp V left bubbles of air in the
-/// marching tetrahedra's creases). Star-shaped, hence one closed genus-0 surface; by `marching_tetrahedra()`
-/// on a grid of `resolution` cubes a side in [-1.1, 1.1]^3.
+/// marching tetrahedra's creases). Star-shaped, hence one closed genus-0 surface; by
+/// `marching_tetrahedra()` on a grid of `resolution` cubes a side in [-1.1, 1.1]^3.
 template <class Point>
 CGAL::Surface_mesh<Point> cortex(int resolution)
 {
@@ -296,8 +296,7 @@ CGAL::Surface_mesh<Point> lattice_sphere(double squared_radius)
 
 /// The shape named `capsuleL`, `helixT`, `cylinderN`, `metaballsN`, `starfishN`, `cortexN` or
 /// `latticeR` (positive numbers: length, turns, vertices around, grid resolution, squared
-/// radius), or
-/// nothing.
+/// radius), or nothing.
 template <class Point>
 std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
 {

@@ -363,14 +363,14 @@ private:
     // stage's start (starfish100, 52k faces: 111 -> 91 iterations, 7.2 -> 4.5 s, to a lower
     // energy; starfish150 21.8 -> 11.0 s). Where the patch does not untangle, its few
     // iterations are lost (cow Dirichlet 69 -> 70 iterations, the same minimum).
-    if(is_input && optimistic && folded && untangle_locally(run, level, x, visitor))
-      return floor_stage();
     // The same on a coarser level, whose optimistic stage may end folded next to its minimum
     // by one face flipped from the first iterate on (cortex100, 40500 vertices): untangled
     // locally, that minimum is the level's result if it is above the floor, else the
     // continuation's start, rather than the stage's start (cortex100 Combined 42 -> 28
     // iterations, metaballs180 43 -> 29, the same energies; see doc/NOTES.md, session 45).
-    const bool untangled = !is_input && optimistic && folded && untangle_locally(run, level, x, visitor);
+    const bool untangled = optimistic && folded && untangle_locally(run, level, x, visitor);
+    if(untangled && is_input)
+      return floor_stage();
     if(untangled && level.solver->is_above_floor(x, floor)) {
       run.optimistic_stage_rejected = false;
       return !run.interrupted;
