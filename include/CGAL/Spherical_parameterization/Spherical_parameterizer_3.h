@@ -331,8 +331,11 @@ private:
       return uninterrupted;
     }
     // A fold-free minimum of the input with faces under the floor: the floor stage alone,
-    // from there. With its faces a little under the floor, on the neighbourhood of those
-    // faces first (`lift_locally()`), and on the whole map only if that was not enough.
+    // from there, on the neighbourhood of those faces first (`lift_locally()`), and on the
+    // whole map only if that was not enough. Even where it is not, the patch lifts the faces
+    // far under the floor in cheap iterations and the whole map's stage has less to do
+    // (bunny00 Tutte, 304 faces under a tenth of the floor: 7 -> 35 + 3 iterations, 7.4 ->
+    // 6.8 s; see doc/NOTES.md, session 46).
     // Even from faces squeezed far under the floor the floor stage lifts them in a few full
     // Newton steps, where the continuation would first undo the minimum and then find it
     // again in capped ones (armadillo@loop1, Combined, 3707 faces under the floor, 211 under
@@ -351,8 +354,7 @@ private:
       return done && lift_deep_faces(run, x, visitor);
     };
     if(is_input && fold_free_minimum) {
-      const bool near = level.solver->is_above_floor(x, near_floor * floor, internal::degenerate_determinant);
-      if(near && (lift_locally(run, x, visitor) || run.interrupted))
+      if(lift_locally(run, x, visitor) || run.interrupted)
         return !run.interrupted && lift_deep_faces(run, x, visitor);
       return floor_stage();
     }
@@ -743,10 +745,6 @@ private:
   static constexpr std::size_t level_iterations = 40;
   static constexpr double level_tolerance = 1e-5;
   static constexpr std::size_t two_grid_vertices = 50000;  // see minimize_level()
-  // A fold-free minimum of the input whose faces are all above this share of the fold floor
-  // (and above the degeneracy threshold) is "near the floor": its floor stage is tried on
-  // the neighbourhood of the faces under the floor first (`lift_locally()`).
-  static constexpr double near_floor = 0.1;
   // The weight of the continuation barrier's outer layer, on the coarser levels and on the
   // input (`Fold_barrier::energy()`, reaching out to 3 times the continuation's activation).
   // Measured, Combined, one run each side by side: at 90k to 280k faces (15 meshes) the
