@@ -332,11 +332,11 @@ private:
     }
     // A fold-free minimum of the input with faces under the floor: the floor stage alone,
     // from there, on the neighbourhood of those faces first (`lift_locally()`), and on the
-    // whole map only if that was not enough. Even where it is not, the patch lifts the faces
-    // far under the floor in cheap iterations and the whole map's stage has less to do
-    // (bunny00 Tutte, 304 faces under a tenth of the floor: 7 -> 35 + 3 iterations, 7.4 ->
-    // 6.8 s; see doc/NOTES.md, session 46).
-    // Even from faces squeezed far under the floor the floor stage lifts them in a few full
+    // whole map only if that was not enough; then the patch has lifted the deepest faces in
+    // cheap iterations and the whole map's stage has less to do (bunny00 Tutte, 304 faces
+    // under a tenth of the floor: 7 -> 35 + 3 iterations, 7.4 -> 6.8 s; doc/NOTES.md,
+    // session 46).
+    // From faces squeezed far under the floor the floor stage lifts them in a few full
     // Newton steps, where the continuation would first undo the minimum and then find it
     // again in capped ones (armadillo@loop1, Combined, 3707 faces under the floor, 211 under
     // a hundredth of it: 16 + 2 iterations -> 6, 17.4 -> 9.8 s, the same energy).
