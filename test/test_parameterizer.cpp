@@ -44,6 +44,7 @@
 #endif
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -1009,6 +1010,52 @@ void test_solver_threads(int blas_threads_at_start)
 #endif
 }
 
+/// CHOLMOD's OpenMP regions inside the package's guard run as plain calls
+/// (internal/inline_openmp_regions.h), and no other region does: a supernodal
+/// factorization through `Cholmod_traits` runs some inline and solves as CHOLMOD does
+/// through libgomp; a region this program opens itself goes on to libgomp, inside the guard
+/// (one thread: the guard's max-active-levels 0) and outside (two threads, as asked).
+void test_inline_openmp_regions()
+{
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_INLINE_OPENMP_REGIONS
+  namespace internal = SP::internal;
+  const Sparse_matrix m = block_matrix(SP::make_icosphere(6));  // 81924 unknowns, supernodal
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(m.rows());
+  const unsigned long before = internal::inlined_openmp_regions;
+  SP::Cholmod_traits traits;
+  traits.analyze_pattern(m);
+  const bool factored = traits.factorize(m);
+  const unsigned long inlined = internal::inlined_openmp_regions - before;
+  Eigen::CholmodSupernodalLLT<Sparse_matrix, Eigen::Lower> plain;  // outside the guard: libgomp
+  plain.compute(m);
+  const unsigned long inlined_outside = internal::inlined_openmp_regions - before - inlined;
+  const double difference = factored && plain.info() == Eigen::Success
+                              ? (traits.solve(b) - plain.solve(b)).norm() / plain.solve(b).norm()
+                              : std::numeric_limits<double>::infinity();
+  report("[inline OpenMP regions] supernodal factorization: " + std::to_string(inlined) +
+           " regions inline inside the guard, " + std::to_string(inlined_outside) +
+           " outside; solutions differ by " + str(difference),
+         traits.is_supernodal() && inlined > 0 && inlined_outside == 0 && difference < 1e-12);
+
+  std::atomic<int> runs{0};
+  const auto count = [](void* counter) { static_cast<std::atomic<int>*>(counter)->fetch_add(1); };
+  const unsigned long before_own = internal::inlined_openmp_regions;
+  {
+    const internal::Openmp_serial serial;
+    GOMP_parallel(count, &runs, 2, 0);
+  }
+  const int runs_inside = runs.exchange(0);
+  GOMP_parallel(count, &runs, 2, 0);
+  report("[inline OpenMP regions] this program's own region of 2 threads went to libgomp: ran " +
+           std::to_string(runs_inside) + " time(s) inside the guard, " + std::to_string(runs.load()) +
+           " outside, none inline",
+         internal::next_parallel_region() != nullptr && runs_inside == 1 && runs.load() == 2 &&
+           internal::inlined_openmp_regions == before_own);
+#else
+  skip("[inline OpenMP regions]", "not built with CHOLMOD on Linux, or turned off");
+#endif
+}
+
 /// The guard that backs CHOLMOD's large blocks with huge pages
 /// (internal/huge_page_allocation.h): inside it, CHOLMOD's allocations of 4 MB or more are
 /// aligned to 2 MB (they come from `huge_page_malloc`), nested guards keep it, and after the
@@ -1106,6 +1153,7 @@ int main(int argc, char** argv)
   test_vertex_ordered_cholmod();
   test_cholmod_traits();
   test_solver_threads(blas_threads_at_start);
+  test_inline_openmp_regions();
   test_huge_pages();
   test_background_task();
 

@@ -74,7 +74,10 @@ private:
 /// OpenBLAS's own setting (up to 15% faster on an idle machine).
 /// CHOLMOD's own OpenMP regions run on the calling thread alone: Debian's CHOLMOD opens them
 /// with 4 threads whatever the cores, for loops as short as clearing a supernode, and on two
-/// cores they cost bunny00 15 to 20% of its time.
+/// cores they cost bunny00 15 to 20% of its time. On Linux with GCC's OpenMP runtime they
+/// run as plain calls, without libgomp's team of one thread and the system call that ends
+/// it (`internal/inline_openmp_regions.h`): the corpus 23% faster, the same maps. Define
+/// `CGAL_SPHERICAL_PARAMETERIZATION_NO_INLINE_OPENMP_REGIONS` to leave them to libgomp.
 /// CHOLMOD allocates with its default allocator (4 kB pages). Transparent huge pages
 /// (`internal::Cholmod_huge_pages`) made the factorizations 14 to 30% faster at 302k faces
 /// when the first one of each level met the factor's fresh memory. Now the input's factor is

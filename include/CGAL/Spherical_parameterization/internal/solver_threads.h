@@ -4,6 +4,8 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SOLVER_THREADS_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SOLVER_THREADS_H
 
+#include <CGAL/Spherical_parameterization/internal/inline_openmp_regions.h>
+
 #if defined(__unix__)
 #include <dlfcn.h>
 #endif
@@ -102,10 +104,24 @@ private:
 /// cores the threads wait on each other at every region's barrier. With one thread
 /// (`OMP_THREAD_LIMIT=1`, measured side by side, 3 runs each): bunny00 Dirichlet 3.85 to
 /// 4.24 s -> 3.27 to 3.36 s, Combined 2.23 to 2.48 s -> 1.83 to 1.91 s.
+/// Where `inline_openmp_regions.h` can, CHOLMOD's regions then run as plain calls, without
+/// libgomp's team of one.
 class Openmp_serial : Scoped_setting
 {
 public:
-  Openmp_serial() : Scoped_setting(openmp_levels(), [](int) { return 0; }) {}
+  Openmp_serial() : Scoped_setting(openmp_levels(), [](int) { return 0; })
+  {
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_INLINE_OPENMP_REGIONS
+    was_inline_ = inline_openmp_regions;
+    inline_openmp_regions = true;
+#endif
+  }
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_INLINE_OPENMP_REGIONS
+  ~Openmp_serial() { inline_openmp_regions = was_inline_; }
+
+private:
+  bool was_inline_ = false;
+#endif
 
 private:
   static const Library_setting& openmp_levels()
