@@ -15,7 +15,7 @@
 // virtual machines we measure on), those regions took 8 to 25% of the solve: bunny00
 // Combined 1.47 to 1.54 s -> 1.26 to 1.27 s, diplodocus Tutte 9.1 to 10.4 s -> 7.7 to 7.9
 // s, bunny00 after one subdivision 7.7 to 8.5 s -> 7.1 to 7.8 s, the same maps bit for
-// bit (doc/NOTES.md, session 49).
+// bit (doc/NOTES.md, session 48).
 //
 // How: this header defines `GOMP_parallel`, libgomp's entry point of a parallel region,
 // in the program (as an inline function, emitted once). The dynamic linker then binds
