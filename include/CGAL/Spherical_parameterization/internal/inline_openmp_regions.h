@@ -114,11 +114,11 @@ extern "C" __attribute__((used, noinline)) inline void GOMP_parallel(void (*body
                                                                      unsigned flags)
 {
   namespace internal = CGAL::Spherical_parameterization::internal;
-  const internal::Parallel_region next = internal::next_parallel_region();
   const bool run_inline = internal::inline_openmp_regions &&
                           internal::cholmod_code().contains(__builtin_return_address(0)) &&
                           internal::openmp_level() == 0;
-  if(run_inline || !next) {
+  const internal::Parallel_region next = run_inline ? nullptr : internal::next_parallel_region();
+  if(!next) {
     ++internal::inlined_openmp_regions;
     body(data);
     return;

@@ -118,9 +118,6 @@ public:
   }
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_INLINE_OPENMP_REGIONS
   ~Openmp_serial() { inline_openmp_regions = was_inline_; }
-
-private:
-  bool was_inline_ = false;
 #endif
 
 private:
@@ -129,6 +126,9 @@ private:
     static const Library_setting levels("omp_get_max_active_levels", "omp_set_max_active_levels");
     return levels;
   }
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_INLINE_OPENMP_REGIONS
+  bool was_inline_ = false;
+#endif
 };
 
 } // namespace internal
