@@ -448,15 +448,22 @@ void test_two_grid_cycle()
   level_x = level->soup.points;
   for(auto& p : level_x) p.normalize();
   bool converged = true;
-  for(;;) {
+  bool last_flagged = true;  // `last_before_input()` true exactly on the level the input follows
+  std::size_t levels_solved = 0;
+  for(;; ++levels_solved) {
     const I::Spherical_energy<SP::Dirichlet_energy> energy(level->soup, dirichlet);
     converged = converged && level->solver->minimize(energy, level_x, options, no_visitor).stop == I::Newton_stop::CONVERGED;
     level->scatter(level_x, x);
-    if(!levels.refine(x) || !(level = levels.level()))
+    const bool flagged = levels.last_before_input();
+    const bool into_input = !levels.refine(x) || !(level = levels.level());
+    last_flagged = last_flagged && flagged == into_input;
+    if(into_input)
       break;
     level->gather(x, level_x);
   }
   report("two-grid cycle: every level before the input converged", converged);
+  report("coarse to fine: only the last of " + std::to_string(levels_solved + 1) + " levels is flagged the last before the input",
+         last_flagged && levels_solved > 0);
 
   // The restriction, as the transpose of the prolongation: <P a, b> = <a, P^T b>.
   const std::size_t n = soup.number_of_vertices();

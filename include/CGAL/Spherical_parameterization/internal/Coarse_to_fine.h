@@ -158,6 +158,9 @@ public:
     return level_.get();
   }
 
+  /// True if the next `refine()` goes into the input: the current level is the last before it.
+  bool last_before_input() const { return next_size_ + 1 == sizes_.size(); }
+
   /// Makes the splits up to the next level's size, placing the new vertices in `x` (indexed
   /// like the input); then `level()` is that level. False when the input was reached before.
   bool refine(Points& x)
