@@ -194,7 +194,7 @@ private:
     std::optional<internal::Points> best_valid;         // last fold-free map met, for interruptions
     std::string stages;
     bool optimistic_stage_rejected = false;  // on the last level
-    bool last_before_input = false;          // the level being solved is the last coarser one
+    bool last_before_input = false;          // the level being solved is the last coarser one, never the input
   };
 
   static Energy default_energy()
@@ -419,7 +419,7 @@ private:
   // iterations). The corpus and the held-out sizes otherwise unchanged (doc/NOTES.md, session 49).
   bool few_under_floor(const Run& run, Level& level, const internal::Points& x) const
   {
-    if(!run.last_before_input || &level == &input_)
+    if(!run.last_before_input)
       return false;
     const double few = few_under_floor_share * double(level.soup.faces.size());
     return double(level.solver->faces_under_floor(x, run.options.fold_floor).size()) <= few;

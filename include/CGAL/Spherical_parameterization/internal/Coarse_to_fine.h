@@ -167,8 +167,7 @@ public:
   {
     if(next_size_ == sizes_.size())
       return false;
-    const bool into_input = next_size_ + 1 == sizes_.size();
-    const bool for_two_grid = two_grid_ && into_input;
+    const bool for_two_grid = two_grid_ && last_before_input();
     split_rings_.clear();
     while(refinement_.number_of_vertices() < sizes_[next_size_]) {
       // A batch of independent splits: the placements read only their rings' points, none
