@@ -4,9 +4,14 @@
 #
 #   cmake -DDOXYGEN=... -DDOXYFILE=... -DWARNINGS=... -DHTML_DIR=... [-DSTRICT=ON] -P run_doxygen.cmake
 
-if(NOT DOXYGEN)
-  message(FATAL_ERROR "Doxygen was not found when the project was configured: install it "
-                      "(tools/install_dependencies.sh) and configure again")
+if(NOT DOXYGEN OR NOT EXISTS "${DOXYGEN}")
+  if(STRICT)
+    # The test doc_no_warnings, whose SKIP_REGULAR_EXPRESSION matches this line: CTest lists it
+    # as skipped (doc/CMakeLists.txt), not as passed or failed.
+    message(NOTICE "doc_no_warnings skipped: Doxygen not found (install doxygen with tools/install_dependencies.sh)")
+  endif()
+  message(FATAL_ERROR "Doxygen is not where the project was configured to find it (${DOXYGEN}): "
+                      "install it (tools/install_dependencies.sh) and configure again")
 endif()
 
 file(REMOVE ${WARNINGS})

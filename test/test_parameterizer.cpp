@@ -1149,6 +1149,10 @@ int main(int argc, char** argv)
       skip(std::string("[triceratops] ") + test, path + " not found");
   }
 
+  // The skips so far are mesh files that are absent; the tests below skip for what the build
+  // lacks (CHOLMOD, TBB), with which the program still passes, or for the same files again.
+  const bool data_missing = skipped != 0;
+
   // Last: its random matrix draws from `rng`, which would otherwise shift the other tests' draws.
   test_vertex_ordered_cholmod();
   test_cholmod_traits();
@@ -1160,5 +1164,5 @@ int main(int argc, char** argv)
   std::cerr << "time total: " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
             << " s" << std::endl;
   std::cout << passed << " passed, " << failed << " failed" << std::endl;
-  return failed == 0 ? 0 : 1;
+  return exit_status(data_missing);
 }
