@@ -25,10 +25,8 @@
 #include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
 #include <CGAL/Spherical_parameterization/internal/parallel_for.h>
-#include <CGAL/Spherical_parameterization/internal/solver_threads.h>
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
 #include <CGAL/Spherical_parameterization/internal/Vertex_ordered_cholmod.h>
-#include <CGAL/Spherical_parameterization/internal/huge_page_allocation.h>
 #endif
 
 #include "test_support.h"
@@ -49,6 +47,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -443,7 +442,7 @@ void test_mesh_types()
 void test_class(Mesh& mesh, const std::string& mesh_name)
 {
   Section_timer timer("class");
-  SP::Spherical_parameterizer_3<Mesh> parameterizer(SP::combined_energy(1, 1));
+  SP::Spherical_parameterizer_3<Mesh, SP::Combined_energy> parameterizer(SP::combined_energy(1, 1));
   report("[" + mesh_name + ", class]: precompute succeeds", parameterizer.precompute(mesh) == SP::Error_code::OK,
          parameterizer.input_detail());
   Sphere_map first = new_sphere_map(mesh, "v:first"), second = new_sphere_map(mesh, "v:second");
@@ -826,7 +825,7 @@ void test_allocated_factor(const Sparse_matrix& m, const Eigen::VectorXd& b, con
 
   SP::Cholmod_traits solver;
   solver.analyze_pattern(m);
-  SP::internal::Background_task<CGAL::Parallel_tag> allocation([&] { solver.allocate_factor(); });
+  SP::internal::Background_task<CGAL::Parallel_if_available_tag> allocation([&] { solver.allocate_factor(); });
   allocation.wait();
   const bool indefinite_refused = !solver.factorize(indefinite_copy(m));
   const bool factored = solver.factorize(m);
@@ -883,23 +882,39 @@ void test_order_ahead(const Sparse_matrix& m, const Eigen::VectorXd& b)
 }
 #endif
 
-/// `Background_task`: with `Parallel_tag` the task runs on another thread before `wait()`
-/// returns; with `Sequential_tag` on the calling thread, in `wait()`; an exception of the
-/// task reaches `wait()`.
+/// `Background_task`: with `Parallel_tag` (and TBB) the task runs on a TBB thread without
+/// waiting for `wait()`; with `Sequential_tag` on the calling thread, in `wait()`; an
+/// exception of the task reaches `wait()`; the destructor waits for a task that started.
 void test_background_task()
 {
   const std::thread::id caller = std::this_thread::get_id();
-  std::thread::id parallel_thread, sequential_thread;
+  std::thread::id sequential_thread;
   bool ran_before_wait = false;
-  {
-    SP::internal::Background_task<CGAL::Parallel_tag> task([&] { parallel_thread = std::this_thread::get_id(); });
-    task.wait();
-  }
   {
     SP::internal::Background_task<CGAL::Sequential_tag> task([&] { sequential_thread = std::this_thread::get_id(); });
     ran_before_wait = sequential_thread != std::thread::id();
     task.wait();
   }
+  report(std::string("[background task] sequential in wait() on the caller: ") +
+           (!ran_before_wait && sequential_thread == caller ? "yes" : "no"),
+         !ran_before_wait && sequential_thread == caller);
+#ifdef CGAL_LINKED_WITH_TBB
+  std::thread::id parallel_thread;
+  std::atomic<bool> done{false};
+  bool done_before_wait = false;
+  {
+    SP::internal::Background_task<CGAL::Parallel_tag> task([&] {
+      parallel_thread = std::this_thread::get_id();
+      done = true;
+    });
+    // A TBB thread is free (this thread runs no TBB work): it takes the task up meanwhile.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while(!done && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    done_before_wait = done;
+    task.wait();
+  }
+  const bool several_threads = std::thread::hardware_concurrency() > 1;
   bool rethrown = false;
   try {
     SP::internal::Background_task<CGAL::Parallel_tag> task([] { throw std::runtime_error("task failed"); });
@@ -907,11 +922,25 @@ void test_background_task()
   } catch(const std::runtime_error&) {
     rethrown = true;
   }
-  report(std::string("[background task] parallel on another thread: ") + (parallel_thread != caller ? "yes" : "no") +
-           ", sequential in wait() on the caller: " + (!ran_before_wait && sequential_thread == caller ? "yes" : "no") +
-           ", exception reaches wait(): " + (rethrown ? "yes" : "no"),
-         parallel_thread != caller && parallel_thread != std::thread::id() && !ran_before_wait &&
-           sequential_thread == caller && rethrown);
+  std::atomic<bool> started{false}, finished{false};
+  {
+    SP::internal::Background_task<CGAL::Parallel_tag> task([&] {
+      started = true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      finished = true;
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));  // time for a TBB thread to start it
+  }
+  const bool unwaited_consistent = started.load() == finished.load();
+  report(std::string("[background task] parallel on another thread before wait(): ") +
+           (done_before_wait && parallel_thread != caller ? "yes" : "no") +
+           (several_threads ? "" : " (one core: not required)") + ", exception reaches wait(): " +
+           (rethrown ? "yes" : "no") + ", the destructor waits for a started task: " +
+           (unwaited_consistent ? "yes" : "no") + (started ? "" : " (not started)"),
+         (!several_threads || (done_before_wait && parallel_thread != caller)) && rethrown && unwaited_consistent);
+#else
+  skip("[background task] parallel", "built without TBB (CGAL_LINKED_WITH_TBB undefined)");
+#endif
 }
 
 /// `Cholmod_traits` on both of CHOLMOD's factorizations, simplicial for a small mesh and
@@ -948,165 +977,198 @@ void test_cholmod_traits()
 #endif
 }
 
-/// The guards around CHOLMOD's calls (internal/solver_threads.h): inside, OpenMP regions
-/// are inactive (max-active-levels 0) and OpenBLAS has one thread less (at least one); after,
-/// both settings are back. Skipped for a library the process does not have.
-// OpenBLAS's thread count, or -1 if OpenBLAS is not the BLAS of the process.
-int openblas_threads()
+// ---------------------------------------------------------------------------------------
+// The user's process: its settings, and two maps at once
+
+/// The process-wide settings of other libraries that a program may set and that the package
+/// must leave alone, read by name (a library the process does not have gives -1 or null).
+struct Process_settings
 {
+  int openblas_threads = -1;
+  const void* cholmod_malloc = nullptr;  // SuiteSparse's allocator (a global before SuiteSparse 7)
+
+  bool operator==(const Process_settings& o) const
+  {
+    return openblas_threads == o.openblas_threads && cholmod_malloc == o.cholmod_malloc;
+  }
+  std::string str() const
+  {
+    std::ostringstream s;
+    s << "OpenBLAS threads " << openblas_threads << ", CHOLMOD's malloc " << cholmod_malloc;
+    return s.str();
+  }
+};
+
 #if defined(__unix__)
-  const auto get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-  return get ? get() : -1;
-#else
-  return -1;
-#endif
+template <class T>
+T* process_symbol(const char* name)
+{
+  return reinterpret_cast<T*>(dlsym(RTLD_DEFAULT, name));
 }
 
-// `blas_threads_at_start`: before the solves of the other tests, which must have left it as
-// it was (the package changes it around its factorizations, from one thread at a time).
-void test_solver_threads(int blas_threads_at_start)
+Process_settings process_settings()
 {
+  Process_settings s;
+  if(auto* threads = process_symbol<int()>("openblas_get_num_threads"))
+    s.openblas_threads = threads();
+#if defined(CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD) && SUITESPARSE_MAIN_VERSION < 7
+  if(auto* config = process_symbol<SuiteSparse_config_struct>("SuiteSparse_config"))
+    s.cholmod_malloc = reinterpret_cast<const void*>(config->malloc_func);
+#endif
+  return s;
+}
+
+// The calling thread's OpenMP max-active-levels (per thread in OpenMP 5), or -1.
+int openmp_max_active_levels()
+{
+  auto* levels = process_symbol<int()>("omp_get_max_active_levels");
+  return levels ? levels() : -1;
+}
+#endif
+
+/// Solving changes no setting of the process. OpenBLAS's thread count and SuiteSparse's
+/// allocator, global settings, are read on another thread every 50 microseconds while the
+/// package factors a supernodal matrix and maps a mesh, and after; OpenMP's max-active-levels
+/// of the solving thread is read before and after (the program sets it to 3, OpenBLAS to two
+/// threads). None ever differs. And the program's `GOMP_parallel`, what CHOLMOD's OpenMP
+/// regions call, is libgomp's: the package's headers define no symbol of another library.
+void test_process_settings_untouched(Mesh& mesh, const std::string& mesh_name)
+{
+  Section_timer timer("process settings");
 #if defined(__unix__)
-  using Get = int (*)();
-  using Set = void (*)(int);
-  const auto get_levels = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
-  const auto set_levels = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
-  if(get_levels && set_levels) {
+  auto* set_levels = process_symbol<void(int)>("omp_set_max_active_levels");
+  auto* set_blas = process_symbol<void(int)>("openblas_set_num_threads");
+  const int program_levels = openmp_max_active_levels();
+  const int program_blas = process_settings().openblas_threads;
+  if(set_levels)
     set_levels(3);
-    int inside = -1;
-    {
-      const SP::internal::Openmp_serial serial;
-      inside = get_levels();
+  if(set_blas)
+    set_blas(2);
+  const Process_settings before = process_settings();
+  const int levels_before = openmp_max_active_levels();
+  std::atomic<bool> solving{true};
+  std::atomic<unsigned long> reads{0}, changed{0};
+  std::string first_change;
+  std::thread watcher([&] {
+    while(solving) {
+      const Process_settings now = process_settings();
+      if(!(now == before) && changed++ == 0)
+        first_change = now.str();
+      ++reads;
+      std::this_thread::sleep_for(std::chrono::microseconds(50));
     }
-    const int after = get_levels();
-    report("[solver threads] OpenMP max active levels inside " + std::to_string(inside) + ", after " +
-             std::to_string(after) + " (before 3)",
-           inside == 0 && after == 3);
-  } else {
-    skip("[solver threads] OpenMP", "no OpenMP runtime in the process");
-  }
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_KEEP_BLAS_THREADS
-  const auto get_blas = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-  const auto set_blas = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  if(get_blas && set_blas) {
-    report("[solver threads] the solves left OpenBLAS's thread count as it was: " + std::to_string(blas_threads_at_start) +
-             " -> " + std::to_string(get_blas()),
-           get_blas() == blas_threads_at_start);
-    const int before = get_blas();
-    int inside = -1;
-    {
-      const SP::internal::Blas_thread_slack slack;
-      inside = get_blas();
-    }
-    report("[solver threads] OpenBLAS threads before " + std::to_string(before) + ", inside " +
-             std::to_string(inside) + ", after " + std::to_string(get_blas()),
-           inside == std::max(1, before - 1) && get_blas() == before);
-  } else {
-    skip("[solver threads] OpenBLAS", "OpenBLAS is not the BLAS of the process");
-  }
-#endif
-#else
-  skip("[solver threads]", "not a Unix system");
-#endif
-}
-
-/// CHOLMOD's OpenMP regions inside the package's guard run as plain calls
-/// (internal/inline_openmp_regions.h), and no other region does: a supernodal
-/// factorization through `Cholmod_traits` runs some inline and solves as CHOLMOD does
-/// through libgomp; a region this program opens itself goes on to libgomp, inside the guard
-/// (one thread: the guard's max-active-levels 0) and outside (two threads, as asked).
-void test_inline_openmp_regions()
-{
-#ifdef CGAL_SPHERICAL_PARAMETERIZATION_INLINE_OPENMP_REGIONS
-  namespace internal = SP::internal;
-  const Sparse_matrix m = block_matrix(SP::make_icosphere(6));  // 81924 unknowns, supernodal
-  const Eigen::VectorXd b = Eigen::VectorXd::Random(m.rows());
-  const unsigned long before = internal::inlined_openmp_regions;
+  });
+  bool solved = true;
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
+  const Sparse_matrix m = block_matrix(SP::make_icosphere(6));  // 81924 unknowns: supernodal, BLAS
   SP::Cholmod_traits traits;
   traits.analyze_pattern(m);
-  const bool factored = traits.factorize(m);
-  const unsigned long inlined = internal::inlined_openmp_regions - before;
-  Eigen::CholmodSupernodalLLT<Sparse_matrix, Eigen::Lower> plain;  // outside the guard: libgomp
-  plain.compute(m);
-  const unsigned long inlined_outside = internal::inlined_openmp_regions - before - inlined;
-  const double difference = factored && plain.info() == Eigen::Success
-                              ? (traits.solve(b) - plain.solve(b)).norm() / plain.solve(b).norm()
-                              : std::numeric_limits<double>::infinity();
-  report("[inline OpenMP regions] supernodal factorization: " + std::to_string(inlined) +
-           " regions inline inside the guard, " + std::to_string(inlined_outside) +
-           " outside; solutions differ by " + str(difference),
-         traits.is_supernodal() && inlined > 0 && inlined_outside == 0 && difference < 1e-12);
+  solved = traits.factorize(m) && traits.solve(Eigen::VectorXd::Ones(m.rows())).allFinite();
+#endif
+  Sphere_map sphere = new_sphere_map(mesh, "v:settings");
+  solved = CGAL::spherical_parameterize(mesh, sphere).is_valid() && solved;
+  mesh.remove_property_map(sphere);
+  solving = false;
+  watcher.join();
+  const Process_settings after = process_settings();
+  const int levels_after = openmp_max_active_levels();
+  report("[" + mesh_name + "] the process's settings (" + before.str() + ") unchanged during " +
+           std::to_string(reads.load()) + " reads while solving and after: " +
+           (changed == 0 && after == before ? "yes" : "no, " + (changed ? first_change : after.str())) +
+           "; OpenMP max-active-levels " + std::to_string(levels_before) + " -> " + std::to_string(levels_after),
+         solved && changed == 0 && after == before && reads > 0 && levels_after == levels_before);
+  if(set_levels && program_levels >= 0)
+    set_levels(program_levels);
+  if(set_blas && program_blas > 0)
+    set_blas(program_blas);
 
-  std::atomic<int> runs{0};
-  const auto count = [](void* counter) { static_cast<std::atomic<int>*>(counter)->fetch_add(1); };
-  const unsigned long before_own = internal::inlined_openmp_regions;
-  {
-    const internal::Openmp_serial serial;
-    GOMP_parallel(count, &runs, 2, 0);
+  void* const parallel_region = dlsym(RTLD_DEFAULT, "GOMP_parallel");
+  Dl_info where{};
+  if(parallel_region && dladdr(parallel_region, &where) && where.dli_fname) {
+    report(std::string("[process symbols] GOMP_parallel resolves to ") + where.dli_fname,
+           std::strstr(where.dli_fname, "libgomp") != nullptr);
+  } else {
+    skip("[process symbols] GOMP_parallel", "no OpenMP runtime in the process");
   }
-  const int runs_inside = runs.exchange(0);
-  GOMP_parallel(count, &runs, 2, 0);
-  report("[inline OpenMP regions] this program's own region of 2 threads went to libgomp: ran " +
-           std::to_string(runs_inside) + " time(s) inside the guard, " + std::to_string(runs.load()) +
-           " outside, none inline",
-         internal::next_parallel_region() != nullptr && runs_inside == 1 && runs.load() == 2 &&
-           internal::inlined_openmp_regions == before_own);
 #else
-  skip("[inline OpenMP regions]", "not built with CHOLMOD on Linux, or turned off");
+  (void)mesh;
+  skip("[" + mesh_name + "] process settings", "not a Unix system");
 #endif
 }
 
-/// The guard that backs CHOLMOD's large blocks with huge pages
-/// (internal/huge_page_allocation.h): inside it, CHOLMOD's allocations of 4 MB or more are
-/// aligned to 2 MB (they come from `huge_page_malloc`), nested guards keep it, and after the
-/// last one CHOLMOD's default allocator is back. The blocks themselves: zeroed by the calloc,
-/// usable, released by `std::free`.
-void test_huge_pages()
+/// Two maps at once, on two threads (each through `CGAL::spherical_parameterize()` with the
+/// default `CGAL::Parallel_if_available_tag`): both valid, each bit-identical to the same map
+/// computed alone, and the two solves overlapped in time.
+void test_two_threads(Mesh& first, const std::string& first_name, Mesh& second, const std::string& second_name)
 {
-#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
-  constexpr std::size_t huge_page = std::size_t(1) << 21, size = 4 * huge_page;
-  auto* block = static_cast<unsigned char*>(SP::internal::huge_page_calloc(size, 1));
-  const bool zeroed = block && std::all_of(block, block + size, [](unsigned char c) { return c == 0; });
-  if(block)
-    std::fill(block, block + size, 1);
-  std::free(block);
-  constexpr std::size_t small = 1000;  // under 4 MB: std::calloc
-  auto* small_block = static_cast<double*>(SP::internal::huge_page_calloc(small, sizeof(double)));
-  const bool small_zeroed = small_block && std::all_of(small_block, small_block + small, [](double d) { return d == 0; });
-  std::free(small_block);
-  report(std::string("[huge pages] calloc zeroed, 8 MB: ") + (zeroed ? "yes" : "no") + ", 8 kB: " +
-           (small_zeroed ? "yes" : "no"),
-         zeroed && small_zeroed);
-#if defined(__linux__) && SUITESPARSE_MAIN_VERSION < 7
-  using Guard = SP::internal::Cholmod_huge_pages;
-  cholmod_common common;
-  cholmod_start(&common);
-  const bool before = Guard::active();
-  bool inside = false, nested = false, after_nested = false, block_aligned = false;
+  Section_timer timer("two threads");
+  using Clock = std::chrono::steady_clock;
+  struct Job
   {
-    const Guard guard;
-    inside = Guard::active();
-    {
-      const Guard inner;
-      nested = Guard::active();
-    }
-    after_nested = Guard::active();
-    void* factor_like = cholmod_malloc(size, 1, &common);
-    block_aligned = factor_like && reinterpret_cast<std::uintptr_t>(factor_like) % huge_page == 0;
-    cholmod_free(size, 1, factor_like, &common);
+    Mesh* mesh;
+    std::string name;
+    Sphere_map alone, together;
+    SP::Result result;
+    Clock::time_point start, end;
+    std::string error;
+  };
+  std::array<Job, 2> jobs{Job{&first, first_name, {}, {}, {}, {}, {}, {}},
+                          Job{&second, second_name, {}, {}, {}, {}, {}, {}}};
+  for(Job& job : jobs) {
+    job.alone = new_sphere_map(*job.mesh, "v:alone");
+    job.together = new_sphere_map(*job.mesh, "v:together");
+    CGAL::spherical_parameterize(*job.mesh, job.alone);
   }
-  const bool after = Guard::active();
-  cholmod_finish(&common);
-  report(std::string("[huge pages] CHOLMOD's allocator replaced before/inside/nested/after nested/after: ") +
-           std::to_string(before) + std::to_string(inside) + std::to_string(nested) + std::to_string(after_nested) +
-           std::to_string(after) + ", its 8 MB block 2 MB-aligned: " + (block_aligned ? "yes" : "no"),
-         !before && inside && nested && after_nested && !after && block_aligned);
-#else
-  skip("[huge pages] CHOLMOD's allocator", "not Linux, or SuiteSparse 7 or later");
-#endif
-#else
-  skip("[huge pages]", "built without CHOLMOD");
-#endif
+  std::atomic<int> ready{0};
+  const auto run = [&ready](Job& job) {
+    ++ready;
+    while(ready < 2)  // both threads start together
+      std::this_thread::yield();
+    job.start = Clock::now();
+    try {
+      job.result = CGAL::spherical_parameterize(*job.mesh, job.together);
+    } catch(const std::exception& e) {
+      job.error = e.what();
+    }
+    job.end = Clock::now();
+  };
+  std::thread one(run, std::ref(jobs[0])), other(run, std::ref(jobs[1]));
+  one.join();
+  other.join();
+  const bool overlapped = jobs[0].start < jobs[1].end && jobs[1].start < jobs[0].end;
+  for(Job& job : jobs) {
+    const std::string name = "[two threads at once, " + job.name + "]";
+    report(name + " no exception", job.error.empty(), job.error);
+    check_valid_map(name, *job.mesh, job.together, job.result);
+    std::size_t different = 0;
+    for(Vertex v : vertices(*job.mesh))
+      if(!(get(job.alone, v) == get(job.together, v)))
+        ++different;
+    report(name + " bit-identical to the map computed alone", different == 0,
+           std::to_string(different) + " points differ");
+    job.mesh->remove_property_map(job.alone);
+    job.mesh->remove_property_map(job.together);
+  }
+  report("[two threads at once] the two solves overlapped in time", overlapped);
+}
+
+/// The user's process, on triceratops and on CGAL's man (a supernodal factorization at every
+/// level; a bumpy mesh built in code if it is absent).
+void test_user_process()
+{
+  Mesh triceratops, second;
+  const std::string path = data_dir + "/triceratops.off";
+  if(!read_mesh(path, triceratops)) {
+    skip("[process settings], [two threads at once]", path + " not found");
+    return;
+  }
+  std::string second_name = "man";
+  if(!read_mesh(meshes_dir + "/man.off", second)) {
+    second = bumpy_mesh<Mesh>();
+    second_name = "bumpy mesh";
+  }
+  test_process_settings_untouched(triceratops, "triceratops");
+  test_two_threads(triceratops, "triceratops", second, second_name);
 }
 
 int main(int argc, char** argv)
@@ -1115,8 +1177,6 @@ int main(int argc, char** argv)
   meshes_dir = argc > 1 ? argv[1] : "/tmp/cgaldata/data/meshes";
   data_dir = argc > 2 ? argv[2] : "data";
   const auto start = std::chrono::steady_clock::now();
-  const int blas_threads_at_start = openblas_threads();
-
   test_icosphere();
   test_mesh_types();
   test_bad_input();
@@ -1156,10 +1216,8 @@ int main(int argc, char** argv)
   // Last: its random matrix draws from `rng`, which would otherwise shift the other tests' draws.
   test_vertex_ordered_cholmod();
   test_cholmod_traits();
-  test_solver_threads(blas_threads_at_start);
-  test_inline_openmp_regions();
-  test_huge_pages();
   test_background_task();
+  test_user_process();
 
   std::cerr << "time total: " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
             << " s" << std::endl;

@@ -8,7 +8,6 @@
 #include <Eigen/SparseCore>
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
 #include <CGAL/Spherical_parameterization/internal/Vertex_ordered_cholmod.h>
-#include <CGAL/Spherical_parameterization/internal/solver_threads.h>
 #include <Eigen/CholmodSupport>
 #endif
 
@@ -51,13 +50,13 @@ private:
 /// (CHOLMOD's default switch). The supernodes are coarser than CHOLMOD's default: up to 16,
 /// 48 and 96 columns merged whatever the zeros they add, under 80% and under 10% of zeros
 /// (`nrelax`; CHOLMOD's default 4, 16, 48), as each supernode costs BLAS calls. Coarser
-/// supernodes (32, 96, 192) and a higher switch (80) were faster while CHOLMOD's OpenMP
-/// regions ran on several threads (they now run on one, below). Whole runs against those
-/// settings: 302k faces 2.90 -> 2.65 s (medians of 4), each of the 21 corpus runs that
+/// supernodes (32, 96, 192) and a higher switch (80) are faster when CHOLMOD's OpenMP
+/// regions run on several threads; these are faster when they run on the calling thread
+/// (see below), as in the benchmark. Whole runs against those settings, so: 302k faces 2.90 -> 2.65 s (medians of 4), each of the 21 corpus runs that
 /// factor supernodally 1 to 7% faster (up to 16%), held-out sizes 2 to 8%, and the factor
 /// at 302k faces 392 -> 277 MB; with the switch at 40, the meshes of 40 to 80 flops per
 /// entry 10 to 25% faster (man, 35k faces, 69: 2.35 -> 1.86 s; homer, cow), the others
-/// alike (medians of 2; doc/NOTES.md, session 38).
+/// alike.
 /// From 50000 vertices on, the fill-reducing ordering is METIS's on the mesh's vertex graph,
 /// expanded to the two unknowns of each vertex (a matrix of even size is taken to be made of
 /// such 2x2 blocks; any other matrix is still factored correctly, perhaps with more fill):
@@ -68,24 +67,13 @@ private:
 /// into fresh memory at each factorization. The factor is the same, bit for bit; held-out
 /// meshes at 100k to 300k faces ran 2 to 5% faster (bull subdivided twice, 198k faces: 12.72 ->
 /// 12.14 s, medians of 3), and the copy adds about 165 MB to the peak at 1.2M faces.
-/// When the BLAS is OpenBLAS, its factorizations and solves run on one BLAS thread less than
-/// the cores (one on two cores; the count is restored after each): OpenBLAS's spinning
-/// threads slow down badly when another process holds a core. Define `CGAL_SPHERICAL_PARAMETERIZATION_KEEP_BLAS_THREADS` to keep
-/// OpenBLAS's own setting (up to 15% faster on an idle machine).
-/// CHOLMOD's own OpenMP regions run on the calling thread alone: Debian's CHOLMOD opens them
-/// with 4 threads whatever the cores, for loops as short as clearing a supernode, and on two
-/// cores they cost bunny00 15 to 20% of its time. On Linux with GCC's OpenMP runtime they
-/// run as plain calls, without libgomp's team of one thread and the system call that ends
-/// it (`internal/inline_openmp_regions.h`): the corpus 23% faster, the same maps. Define
-/// `CGAL_SPHERICAL_PARAMETERIZATION_NO_INLINE_OPENMP_REGIONS` to leave them to libgomp.
-/// CHOLMOD allocates with its default allocator (4 kB pages). Transparent huge pages
-/// (`internal::Cholmod_huge_pages`) made the factorizations 14 to 30% faster at 302k faces
-/// when the first one of each level met the factor's fresh memory. Now the input's factor is
-/// written ahead on another thread (`allocate_factor()`), and huge pages only slowed down the
-/// first factorization of the other levels (the 40.5k-vertex level at 302k faces: 0.19 to
-/// 0.24 s against 0.08 s; the system time of the run 0.9 to 1.1 s against 0.53 s). Whole runs
-/// without them: 302k faces 2.85 -> 2.75 s, 1.2M faces 15.5 -> 14.8 s (benchmark, alternated),
-/// the other sizes alike (doc/NOTES.md, session 39).
+/// The solver changes nothing of the process beyond its own CHOLMOD objects: OpenBLAS's
+/// thread count, CHOLMOD's OpenMP regions and SuiteSparse's allocator stay as the program set
+/// them, and two solvers may run on two threads at once. What tunes those for a whole process
+/// (the benchmark and the command line tool opt in) is in `tools/process_tuning.h`, outside
+/// the package: Debian's CHOLMOD opens OpenMP regions of 4 threads for loops as short as
+/// clearing a supernode, and OpenBLAS's threads spin while they wait, which on two cores
+/// costs the factorizations much of their time.
 /// \cgalModels `SphericalSparseSolverTraits`
 class Cholmod_traits
 {
@@ -107,25 +95,19 @@ public:
     relax_supernodes(c);
   }
 
-  // The symbolic analysis calls no BLAS, so it holds no `Blas_thread_slack` (a setting of
-  // the whole process): the input's analysis runs on another thread while the coarser
-  // levels factor theirs.
   void analyze_pattern(const Matrix& m)
   {
-    const internal::Openmp_serial openmp_serial;
     if(m.rows() < 2 * vertex_ordering_from || !solver_.analyze_pattern_by_vertices(m))
       solver_.analyzePattern(m);
     solver_.order_ahead(m);
   }
   bool factorize(const Matrix& m)
   {
-    const Call_settings settings;
     solver_.factorize_in_order(m);
     return solver_.info() == Eigen::Success;
   }
   Vector solve(const Vector& b) const
   {
-    const Call_settings settings;
     return solver_.solve_in_order(b);
   }
 
@@ -152,13 +134,6 @@ public:
   /// \endcond
 
 private:
-  // Held around every call into CHOLMOD.
-  struct Call_settings
-  {
-    internal::Blas_thread_slack blas_threads;
-    internal::Openmp_serial openmp_serial;
-  };
-
   static constexpr Eigen::Index vertex_ordering_from = 50000;  // vertices
   static constexpr double supernodal_from = 40;                // flops per entry of the factor
   static constexpr std::size_t relaxed_columns[3] = {16, 48, 96};  // see the class comment
