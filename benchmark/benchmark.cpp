@@ -6,7 +6,7 @@
 // factorization and solve of the mesh's cotangent Laplacian.
 //
 // Usage:
-//   benchmark [--repeats N] [--energies tutte,dirichlet,combined] [--pipeline robust|paper]
+//   benchmark [--repeats N] [--energies balanced,tutte,dirichlet,combined] [--pipeline robust|paper]
 //             [--max-seconds S] [--no-fork] [--same-input] [--json FILE] [--csv FILE] MESH...
 // A MESH ending in "@loopN" (e.g. bunny00.off@loop2) is Loop-subdivided N times after reading;
 // "@sliversN" and "@needlesN" then add N nearly degenerate faces of each kind (mesh_defects.h).
@@ -23,10 +23,12 @@
 #include <CGAL/subdivision_method_3.h>
 
 #include <CGAL/spherical_parameterize.h>
+#include <CGAL/Spherical_parameterization/Balanced_energy.h>
 #include <CGAL/Spherical_parameterization/Energy_mix.h>
 #include <CGAL/Spherical_parameterization/measure_distortion.h>
-#include <CGAL/Spherical_parameterization/internal/solver_threads.h>
+#include <CGAL/Spherical_parameterization/resampling_error.h>
 
+#include "../tools/process_tuning.h"
 #include "mesh_defects.h"
 #include "synthetic_shapes.h"
 
@@ -34,7 +36,6 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
-#include <CGAL/Spherical_parameterization/internal/huge_page_allocation.h>
 #include <Eigen/CholmodSupport>
 #endif
 
@@ -74,7 +75,7 @@ namespace {
 struct Options
 {
   std::optional<int> repeats;  // default: 3, or 1 above 200k faces
-  std::vector<std::string> energies{"tutte", "dirichlet", "combined"};
+  std::vector<std::string> energies{"balanced", "tutte", "dirichlet", "combined"};
   std::string pipeline = "robust";
   double max_seconds = 0;  // 0: unlimited
   bool fork_runs = true;
@@ -86,7 +87,7 @@ struct Options
 void usage(const char* program)
 {
   std::cerr << "usage: " << program
-            << " [--repeats N] [--energies tutte,dirichlet,combined] [--pipeline robust|paper]\n"
+            << " [--repeats N] [--energies balanced,tutte,dirichlet,combined] [--pipeline robust|paper]\n"
                "       [--max-seconds S] [--no-fork] [--same-input] [--json FILE] [--csv FILE] MESH...\n"
                "The repeats after the first run on the input turned by fixed rotations (the rounding,\n"
                "and so the solver's path, changes); --same-input repeats the input as read.\n"
@@ -110,6 +111,20 @@ std::vector<std::string> split(const std::string& s, char separator)
     if(!part.empty())
       parts.push_back(part);
   return parts;
+}
+
+// An energy as NAME or NAME:A or NAME:A:B, the arguments of `energy_by_name()`
+// (e.g. combined:1:30); "balanced" alone is the default energy, `balanced_energy()`.
+std::optional<SP::Energy_mix> energy_from_spec(const std::string& spec)
+{
+  const std::vector<std::string> parts = split(spec, ':');
+  if(parts.empty() || parts.size() > 3)
+    return std::nullopt;
+  if(parts.size() == 1 && parts[0] == "balanced")
+    return SP::energy_by_name("balanced", 1 - SP::default_area_preservation, SP::default_area_preservation);
+  const double a = parts.size() > 1 ? std::atof(parts[1].c_str()) : 1;
+  const double b = parts.size() > 2 ? std::atof(parts[2].c_str()) : 1;
+  return SP::energy_by_name(parts[0], a, b);
 }
 
 bool parse_options(int argc, char** argv, Options& options)
@@ -162,7 +177,7 @@ bool parse_options(int argc, char** argv, Options& options)
     }
   }
   for(const std::string& e : options.energies)
-    if(!SP::energy_by_name(e)) {
+    if(!energy_from_spec(e)) {
       std::cerr << "unknown energy " << e << '\n';
       return false;
     }
@@ -212,6 +227,8 @@ struct Run_record
   std::size_t flipped = 0, degenerate = 0;
   double degree = 0, max_norm_error = 0;
   double qc_mean = 0, qc_p95 = 0, log_area_mean = 0, min_area_ratio = 0, l2_stretch = 0, angle_mean = 0;
+  // From resampling_error() on the icosphere of level 6, for a valid map (else -1).
+  double resampling_mean = -1, resampling_max = -1;
 };
 
 void copy_string(char* out, std::size_t size, const std::string& s)
@@ -256,6 +273,11 @@ Run_record run_once(Mesh& mesh, const SP::Energy_mix& energy, SP::Pipeline pipel
     record.min_area_ratio = report.min_area_ratio;
     record.l2_stretch = report.l2_stretch;
     record.angle_mean = report.angle_error.mean;
+    if(record.valid) {
+      const SP::Resampling_error resampled = SP::resampling_error(mesh, sphere, 6);
+      record.resampling_mean = resampled.mean;
+      record.resampling_max = resampled.max;
+    }
   }
   mesh.remove_property_map(sphere);
   return record;
@@ -444,21 +466,16 @@ void use_package_settings(Eigen::CholmodSupernodalLLT<Matrix, UpLo>& solver)
 #endif
 
 // Median of 3 times of (symbolic analysis + numeric factorization + one solve) with
-// `Solver`; negative if it failed. CHOLMOD's OpenMP regions run on one thread and its
-// supernodes are as coarse as in the package's own factorizations (internal/solver_threads.h,
-// Cholmod_traits): the yardstick is not to carry an overhead that the package avoids. With
-// `huge_pages`, CHOLMOD's large blocks are on transparent huge pages
-// (internal/huge_page_allocation.h), which the package no longer uses but which make some
-// factorizations faster (302k faces: 0.25 against 0.28 s; 1.2M: 1.75 against 1.6 s).
+// `Solver`; negative if it failed. CHOLMOD's OpenMP regions run as in the package's runs
+// (inline, by the process tuning of main()) and its supernodes are as coarse as in the
+// package's own factorizations (Cholmod_traits): the yardstick is not to carry an overhead
+// that the package's runs avoid. OpenBLAS has its own thread count, and with `huge_pages`
+// CHOLMOD's large blocks are on transparent huge pages, which make some factorizations
+// faster (302k faces: 0.25 against 0.28 s; 1.2M: 1.75 against 1.6 s; tools/process_tuning.h).
 template <class Solver>
 double solve_time(const Sparse& matrix, const Eigen::VectorXd& rhs, bool huge_pages = false)
 {
-  const CGAL::Spherical_parameterization::internal::Openmp_serial serial;
-#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
-  std::optional<CGAL::Spherical_parameterization::internal::Cholmod_huge_pages> huge_page_guard;
-  if(huge_pages)
-    huge_page_guard.emplace();
-#endif
+  const process_tuning::Yardstick_settings settings(huge_pages);
   std::vector<double> times;
   for(int r = 0; r < 3; ++r) {
     const Clock::time_point start = Clock::now();
@@ -614,20 +631,22 @@ const char* status_name(int status, bool ran)
 
 void print_header()
 {
-  std::printf("%-18s %8s %-9s %9s %9s %8s %5s %11s %-5s %5s %5s %7s %8s %8s %8s %9s %8s %8s %8s  %s\n", "mesh",
-              "faces", "energy", "time_s", "chol_s", "ratio", "iters", "energy_val", "valid", "flip", "degen",
-              "degree", "qc_mean", "qc_p95", "logA", "minA", "L2str", "peak_MB", "dpeakMB", "status / stages");
+  std::printf("%-18s %8s %-9s %9s %9s %8s %5s %11s %-5s %5s %5s %7s %8s %8s %8s %9s %8s %7s %7s %8s %8s  %s\n",
+              "mesh", "faces", "energy", "time_s", "chol_s", "ratio", "iters", "energy_val", "valid", "flip", "degen",
+              "degree", "qc_mean", "qc_p95", "logA", "minA", "L2str", "rsMean%", "rsMax%", "peak_MB", "dpeakMB",
+              "status / stages");
 }
 
 void print_row(const Row& r)
 {
   const Run_record& x = r.run;
   std::printf("%-18s %8zu %-9s %9.3f %9.4f %8.1f %5zu %11.5g %-5s %5zu %5zu %7.4f %8.3f %8.3f %8.3f %9.2e %8.2f "
-              "%8.1f %8.1f  %s %s\n",
+              "%7.3f %7.2f %8.1f %8.1f  %s %s\n",
               r.mesh.c_str(), r.faces, r.energy.c_str(), r.time, r.yardstick,
               r.yardstick > 0 ? r.time / r.yardstick : 0.0, x.iterations, x.energy, x.valid ? "yes" : "NO",
               x.flipped, x.degenerate, x.degree, x.qc_mean, x.qc_p95, x.log_area_mean, x.min_area_ratio,
-              x.l2_stretch, r.peak_rss_kb / 1024.0, r.peak_delta_kb / 1024.0, r.status.c_str(), x.stages);
+              x.l2_stretch, 100 * x.resampling_mean, 100 * x.resampling_max, r.peak_rss_kb / 1024.0,
+              r.peak_delta_kb / 1024.0, r.status.c_str(), x.stages);
   std::fflush(stdout);
 }
 
@@ -680,7 +699,7 @@ bool write_csv(const std::string& file, const std::vector<Row>& rows)
   out << "mesh,path,vertices,faces,energy,pipeline,repeats,status,valid,solver_valid,time_s,time_min_s,time_max_s,"
          "yardstick_s,yardstick_kind,ratio,iterations,final_energy,stages,peak_rss_mb,peak_delta_mb,flipped,"
          "degenerate,degree,max_norm_error,qc_mean,qc_p95,log_area_mean,min_area_ratio,l2_stretch,angle_error_mean,"
-         "detail\n";
+         "resampling_mean,resampling_max,detail\n";
   out.precision(9);
   for(const Row& r : rows) {
     const Run_record& x = r.run;
@@ -693,7 +712,8 @@ bool write_csv(const std::string& file, const std::vector<Row>& rows)
         << x.iterations << ',' << x.energy << ',' << csv_field(x.stages) << ',' << r.peak_rss_kb / 1024.0 << ','
         << r.peak_delta_kb / 1024.0 << ',' << x.flipped << ',' << x.degenerate << ',' << x.degree << ','
         << x.max_norm_error << ',' << x.qc_mean << ',' << x.qc_p95 << ',' << x.log_area_mean << ','
-        << x.min_area_ratio << ',' << x.l2_stretch << ',' << x.angle_mean << ',' << csv_field(x.detail) << '\n';
+        << x.min_area_ratio << ',' << x.l2_stretch << ',' << x.angle_mean << ',' << x.resampling_mean << ','
+        << x.resampling_max << ',' << csv_field(x.detail) << '\n';
   }
   return bool(out);
 }
@@ -729,7 +749,9 @@ bool write_json(const std::string& file, const std::vector<Row>& rows, bool fork
         << ", \"qc_p95\": " << json_number(x.qc_p95) << ", \"log_area_mean\": " << json_number(x.log_area_mean)
         << ", \"min_area_ratio\": " << json_number(x.min_area_ratio)
         << ", \"l2_stretch\": " << json_number(x.l2_stretch)
-        << ", \"angle_error_mean\": " << json_number(x.angle_mean) << "}";
+        << ", \"angle_error_mean\": " << json_number(x.angle_mean)
+        << ", \"resampling_mean\": " << json_number(x.resampling_mean)
+        << ", \"resampling_max\": " << json_number(x.resampling_max) << "}";
   }
   out << "\n  ]\n}\n";
   return bool(out);
@@ -739,6 +761,9 @@ bool write_json(const std::string& file, const std::vector<Row>& rows, bool fork
 
 int main(int argc, char** argv)
 {
+  // This program owns its process, and tunes it for CHOLMOD (tools/process_tuning.h): its
+  // OpenMP regions inline, OpenBLAS one thread short of the cores.
+  const std::string tuning = process_tuning::enable();
   Options options;
   if(!parse_options(argc, argv, options)) {
     usage(argv[0]);
@@ -749,6 +774,7 @@ int main(int argc, char** argv)
             << (options.fork_runs ? "one forked process per run (peak = its ru_maxrss)"
                                   : "in process (ru_maxrss is process-wide; dpeak = statm after - before)")
             << "; pipeline: " << options.pipeline << '\n';
+  std::cout << "# process tuning: " << tuning << '\n';
   print_header();
 
   std::vector<Row> rows;
@@ -790,7 +816,7 @@ int main(int argc, char** argv)
       input.push_back(mesh.point(v));
 
     for(const std::string& energy_name : options.energies) {
-      const SP::Energy_mix energy = *SP::energy_by_name(energy_name);
+      const SP::Energy_mix energy = *energy_from_spec(energy_name);
       Row row;
       row.mesh = in.name;
       row.path = in.path;

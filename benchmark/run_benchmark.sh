@@ -2,23 +2,27 @@
 # Builds the benchmark in Release and runs it over CGAL's sample meshes; writes
 # benchmark/results/latest.csv and latest.json, then the plots (see README.md).
 #
-# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--defects] [--tubes] [--isosurfaces] [--energies LIST]
+# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--defects] [--tubes] [--isosurfaces] [--knob] [--energies LIST]
 #                                   [--pipeline robust|paper] [--data DIR] [--build-dir DIR]
 #   --quick          only the meshes under 15k faces, 1 repeat each
 #   --full           also bunny00 Loop-subdivided once (300k faces) and twice (1.2M faces)
 #   --large          instead, 15 other meshes Loop-subdivided to 90k-260k faces, 3 repeats
-#                    (turned inputs, see benchmark/README.md), Combined unless --energies;
+#                    (turned inputs, see benchmark/README.md), the default energy (balanced) unless --energies;
 #                    results in benchmark/results/large/
 #   --defects        instead, meshes with nearly degenerate faces added (MESH@sliversN,
-#                    MESH@needlesN), 1 repeat, Combined unless --energies; results in
+#                    MESH@needlesN), 1 repeat, the default energy (balanced) unless --energies; results in
 #                    benchmark/results/defects/
 #   --tubes          instead, tubes built by the benchmark (tube:capsuleL, tube:helixT, tube:cylinderN;
-#                    no data needed), 1 repeat, Combined unless --energies; results in
+#                    no data needed), 1 repeat, the default energy (balanced) unless --energies; results in
 #                    benchmark/results/tubes/
 #   --isosurfaces    instead, isosurfaces by marching tetrahedra built by the benchmark
 #                    (iso:metaballsN, iso:latticeR; no data needed), 1 repeat, all three
 #                    energies unless --energies; results in benchmark/results/isosurfaces/
-#   --energies LIST  comma-separated, default tutte,dirichlet,combined
+#   --knob           instead, the balanced energy's knob t from 0 (conformal) to 1 (equal-area)
+#                    on camel, cow, man and bunny00, 1 repeat; results and the plot of angle
+#                    against area distortion (knob.png) in benchmark/results/knob/
+#   --energies LIST  comma-separated (NAME, NAME:A or NAME:A:B), default
+#                    balanced,tutte,dirichlet,combined (balanced: the default energy)
 #   --pipeline P     robust (default) or paper
 #   --data DIR       a folder holding the .off meshes; default: CGAL's data tarball
 #                    /usr/share/doc/libcgal-dev/data.tar.gz (Debian package libcgal-demo),
@@ -35,6 +39,7 @@ large=0
 defects=0
 tubes=0
 isosurfaces=0
+knob=0
 energies=""
 pipeline="robust"
 data=""
@@ -47,11 +52,12 @@ while [ $# -gt 0 ]; do
     --defects) defects=1 ;;
     --tubes) tubes=1 ;;
     --isosurfaces) isosurfaces=1 ;;
+    --knob) knob=1 ;;
     --energies) energies="$2"; shift ;;
     --pipeline) pipeline="$2"; shift ;;
     --data) data="$2"; shift ;;
     --build-dir) build_dir="$2"; shift ;;
-    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,26p' "$0"; exit 0 ;;
     *) echo "unknown option $1" >&2; exit 1 ;;
   esac
   shift
@@ -82,19 +88,28 @@ repeats=""  # the benchmark's default: 3, or 1 above 200k faces
 if [ "$large" = 1 ]; then
   corpus=("${large_corpus[@]}")
   repeats=3  # the paths of the protrusion meshes follow the rounding: a median over 3
-  : "${energies:=combined}"
+  : "${energies:=balanced}"
 fi
 if [ "$defects" = 1 ]; then
   corpus=("${defects_corpus[@]}")
   large=1  # the same treatment: every mesh, one repeat
   repeats=1
-  : "${energies:=combined}"
+  : "${energies:=balanced}"
 fi
 if [ "$tubes" = 1 ]; then
   corpus=("${tubes_corpus[@]}")
   large=1
   repeats=1
-  : "${energies:=combined}"
+  : "${energies:=balanced}"
+fi
+# The knob's range: t = B / (A + B) for balanced:A:B.
+knob_corpus=(camel cow man bunny00)
+knob_energies=balanced:1:0,balanced:0.95:0.05,balanced:0.9:0.1,balanced:0.75:0.25,balanced:0.5:0.5,balanced:0.25:0.75,balanced:0.1:0.9,balanced:0:1
+if [ "$knob" = 1 ]; then
+  corpus=("${knob_corpus[@]}")
+  large=1
+  repeats=1
+  : "${energies:=$knob_energies}"
 fi
 if [ "$isosurfaces" = 1 ]; then
   corpus=("${isosurfaces_corpus[@]}")
@@ -102,7 +117,7 @@ if [ "$isosurfaces" = 1 ]; then
   large=1
   repeats=1
 fi
-: "${energies:=tutte,dirichlet,combined}"
+: "${energies:=balanced,tutte,dirichlet,combined}"
 
 # The meshes.
 tmp=""
@@ -167,7 +182,7 @@ binary="$build_dir/bin/benchmark"
 
 # Run.
 results="$here/results"
-if [ "$isosurfaces" = 1 ]; then results="$results/isosurfaces"; elif [ "$tubes" = 1 ]; then results="$results/tubes"; elif [ "$defects" = 1 ]; then results="$results/defects"; elif [ "$large" = 1 ]; then results="$results/large"; fi
+if [ "$knob" = 1 ]; then results="$results/knob"; elif [ "$isosurfaces" = 1 ]; then results="$results/isosurfaces"; elif [ "$tubes" = 1 ]; then results="$results/tubes"; elif [ "$defects" = 1 ]; then results="$results/defects"; elif [ "$large" = 1 ]; then results="$results/large"; fi
 mkdir -p "$results"
 args=(--energies "$energies" --pipeline "$pipeline" --csv "$results/latest.csv" --json "$results/latest.json")
 if [ "$quick" = 1 ]; then repeats=1; fi
@@ -188,4 +203,5 @@ if [ -z "$python" ]; then
   exit 1
 fi
 "$python" "$here/plot_results.py" "$results/latest.json" --out "$results"
+if [ "$knob" = 1 ]; then "$python" "$here/plot_knob.py" "$results/latest.csv" "$results/knob.png"; fi
 exit "$status"

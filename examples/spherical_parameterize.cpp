@@ -1,6 +1,6 @@
 // The command line tool: maps a closed genus-0 triangle mesh onto the unit sphere.
 //
-//   spherical_parameterize [INPUT [OUTPUT]] [--energy NAME] [--weights A [B]]
+//   spherical_parameterize [INPUT [OUTPUT]] [--energy NAME] [--area-preservation T] [--weights A [B]]
 //                          [--pipeline robust|paper] [--init central|FILE]
 //                          [--max-iterations N] [--time-limit SECONDS] [--no-correction]
 //                          [--triangulate] [--orient] [--quiet]
@@ -26,6 +26,8 @@
 #include <CGAL/Spherical_parameterization/remesh_on_icosphere.h>
 #include <CGAL/Spherical_parameterization/surface_map.h>
 #include <CGAL/Spherical_parameterization/texture_coordinates.h>
+
+#include "../tools/process_tuning.h"
 
 #include <algorithm>
 #include <cmath>
@@ -58,7 +60,8 @@ struct Options
 {
   std::string input = std::string(SPHERICAL_PARAMETERIZATION_DATA_DIR) + "/triceratops.off";
   std::string output;
-  std::string energy = "combined";
+  std::string energy = "balanced";
+  double area_preservation = SP::default_area_preservation;
   std::vector<double> weights;
   SP::Pipeline pipeline = SP::Pipeline::ROBUST;
   std::string init = "central";
@@ -80,12 +83,19 @@ struct Options
 };
 
 const char* usage =
-  "usage: spherical_parameterize [INPUT [OUTPUT]] [--energy tutte|dirichlet|area|stretch|mips|combined]\n"
-  "         [--weights A [B]] [--pipeline robust|paper] [--init central|FILE] [--max-iterations N]\n"
+  "usage: spherical_parameterize [INPUT [OUTPUT]]\n"
+  "         [--energy balanced|tutte|dirichlet|area|stretch|mips|combined|area_distortion]\n"
+  "         [--area-preservation T] [--weights A [B]] [--pipeline robust|paper] [--init central|FILE]\n"
+  "         [--max-iterations N]\n"
   "         [--time-limit SECONDS] [--no-correction] [--triangulate] [--orient] [--quiet]\n"
   "         [--remesh-icosphere LEVEL OUT] [--geometry-image N OUT]\n"
   "         [--map-to OTHER_MESH OTHER_SPHERE OUT [--landmarks FILE]]\n"
   "         [--texture equirectangular|octahedral OUT.obj]\n"
+  "  --energy NAME                  default balanced: (1 - T) conformal + T area distortion\n"
+  "  --area-preservation T          the balanced energy's knob, from 0 (conformal) to 1 (equal-area);\n"
+  "                                 default 0.25, the least that keeps protrusions for a resampling\n"
+  "  --weights A [B]                the energy's weights instead (balanced and combined: A on the\n"
+  "                                 angles, B on the areas)\n"
   "  --triangulate                  split the input's polygons into triangles\n"
   "  --orient                       read a soup whose faces are not consistently oriented (CGAL's\n"
   "                                 orient_polygon_soup); OUTPUT then has the reoriented faces, and\n"
@@ -140,6 +150,10 @@ Options parse_options(int argc, char** argv)
     };
     if(arg == "--help" || arg == "-h") { std::cout << usage; std::exit(0); }
     else if(arg == "--energy") o.energy = next();
+    else if(arg == "--area-preservation") {
+      o.area_preservation = parse_number(arg, next());
+      if(!(o.area_preservation >= 0 && o.area_preservation <= 1)) fail("--area-preservation expects a number from 0 to 1");
+    }
     else if(arg == "--weights") {
       o.weights.push_back(parse_number(arg, next()));
       if(i + 1 < argc && argv[i + 1][0] != '-') o.weights.push_back(parse_number(arg, next()));
@@ -258,7 +272,9 @@ void print_report(const Options& o, const Mesh& mesh, const SP::Result& r, const
   std::cout << std::setprecision(4)
             << "input            " << o.input << ": " << mesh.number_of_vertices() << " vertices, "
             << mesh.number_of_faces() << " faces" << (r.inward_oriented ? ", oriented inward" : "") << "\n"
-            << "energy           " << o.energy << (o.correction ? "" : " without the d_min correction")
+            << "energy           " << o.energy
+            << (o.energy == "balanced" && o.weights.empty() ? " (area preservation " + std::to_string(o.area_preservation) + ")" : "")
+            << (o.correction ? "" : " without the d_min correction")
             << ", pipeline " << (o.pipeline == SP::Pipeline::ROBUST ? "robust" : "paper") << "\n"
             << "status           " << quote_status(r) << "\n"
             << "valid map        " << (d.is_valid() ? "yes" : "no") << ": " << d.flipped << " flipped, "
@@ -272,6 +288,23 @@ void print_report(const Options& o, const Mesh& mesh, const SP::Result& r, const
             << ", max " << d.log_area_ratio.max << "; smallest area ratio " << d.min_area_ratio << "\n"
             << "stretch          L2 " << d.l2_stretch << ", Linf " << d.linf_stretch << "\n"
             << "output           " << o.output << "\n";
+}
+
+// A face whose share of the sphere is under this fraction of its share of the input is lost
+// to any resampling of the map at a resolution that the input's own faces would survive.
+constexpr double squeezed_area_ratio = 1e-3;
+
+void warn_if_squeezed(const Options& o, const SP::Distortion_report& d)
+{
+  if(!d.is_valid() || !(d.min_area_ratio < squeezed_area_ratio))
+    return;
+  std::cerr << "spherical_parameterize: warning: the map is valid but squeezes some faces to " << d.min_area_ratio
+            << " of their share of the area (under " << squeezed_area_ratio
+            << "): a resampling of the sphere loses those parts. ";
+  if(o.energy == "balanced" && o.weights.empty() && o.area_preservation < 1)
+    std::cerr << "A higher --area-preservation (now " << o.area_preservation << ") keeps them.\n";
+  else
+    std::cerr << "The default energy (--energy balanced) keeps them.\n";
 }
 
 // Writes to a temporary file beside the output, then renames it: never a half-written file.
@@ -308,12 +341,20 @@ void write_stream(const std::string& path, std::ios::openmode mode, const std::f
   });
 }
 
+// The energy of the options: the balanced energy at the knob, unless weights are given.
+std::optional<SP::Energy_mix> energy_of(const Options& o)
+{
+  if(o.energy == "balanced" && o.weights.empty())
+    return SP::energy_by_name("balanced", 1 - o.area_preservation, o.area_preservation);
+  return SP::energy_by_name(o.energy, o.weights.size() > 0 ? o.weights[0] : 1.0,
+                            o.weights.size() > 1 ? o.weights[1] : 1.0);
+}
+
 template <class NamedParameters>
 SP::Result run(const Options& o, const Mesh& mesh, Mesh::Property_map<Mesh::Vertex_index, Point> sphere,
                const NamedParameters& np)
 {
-  const auto energy = SP::energy_by_name(o.energy, o.weights.size() > 0 ? o.weights[0] : 1.0,
-                                         o.weights.size() > 1 ? o.weights[1] : 1.0);
+  const auto energy = energy_of(o);
   if(!energy) fail("unknown energy '" + o.energy + "' or weights not positive");
   const bool show_progress = !o.quiet && isatty(STDERR_FILENO);
   auto progress = [show_progress](const SP::Progress& p) {
@@ -477,6 +518,9 @@ void use_the_map(const Options& o, const Mesh& mesh, const Sphere_map& sphere)
 
 int main(int argc, char** argv)
 {
+  // This program owns its process, and tunes it for CHOLMOD (tools/process_tuning.h): its
+  // OpenMP regions inline, OpenBLAS one thread short of the cores.
+  process_tuning::enable();
   const Options o = parse_options(argc, argv);
   Mesh mesh = read_mesh(o.input, o.orient);
   if(o.triangulate && !CGAL::is_triangle_mesh(mesh))
@@ -505,7 +549,10 @@ int main(int argc, char** argv)
   Mesh sphere_mesh = mesh;
   for(auto v : sphere_mesh.vertices()) sphere_mesh.point(v) = sphere[v];
   write_mesh(sphere_mesh, o.output);
-  if(!o.quiet) print_report(o, mesh, r, d);
+  if(!o.quiet) {
+    print_report(o, mesh, r, d);
+    warn_if_squeezed(o, d);
+  }
   if(d.is_valid())
     use_the_map(o, mesh, sphere);
   else if(uses_the_map(o))

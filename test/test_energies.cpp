@@ -7,7 +7,9 @@
 // projection (with its small eigen solver) of the Newton solver.
 // Usage: test_energies            (prints PASS/FAIL per check, then "N passed, M failed")
 
+#include <CGAL/Spherical_parameterization/Area_distortion_energy.h>
 #include <CGAL/Spherical_parameterization/Area_energy.h>
+#include <CGAL/Spherical_parameterization/Balanced_energy.h>
 #include <CGAL/Spherical_parameterization/Chord_triangle.h>
 #include <CGAL/Spherical_parameterization/Dirichlet_energy.h>
 #include <CGAL/Spherical_parameterization/Energy_mix.h>
@@ -232,15 +234,45 @@ void check_energy(const std::string& name, const Energy& energy)
   }
 }
 
+// The area distortion of one face: smallest, equal to the input area, where the chord
+// triangle's signed area ratio is 1; larger on either side; infinite once the face flips.
+void test_area_distortion_minimum()
+{
+  const double input_area = 0.005;
+  const Eigen::Vector3d p(0, 0, 1), u(0.1, 0, 0), v(0, 0.1, 0);
+  const SP::Area_distortion_energy energy;
+  auto chord = [&](double scale, bool flipped) {
+    const Eigen::Vector3d a = p, b = (p + scale * u).normalized(), c = (p + scale * v).normalized();
+    return flipped ? SP::Chord_triangle<double>(a, c, b) : SP::Chord_triangle<double>(a, b, c);
+  };
+  auto value = [&](double scale, bool flipped) { return energy.flat_energy(chord(scale, flipped), input_area); };
+  // The scale at which det(a, b, c) = 2 InputArea, by bisection (det grows with the scale here).
+  double lo = 0.01, hi = 3;
+  for(int k = 0; k < 200; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (chord(mid, false).determinant() < 2 * input_area ? lo : hi) = mid;
+  }
+  const double at_one = value(lo, false);
+  report("area distortion of a face at area ratio 1 is its input area (rel 1e-9)",
+         std::abs(at_one / input_area - 1) <= 1e-9, str(at_one / input_area, 12));
+  report("area distortion grows on both sides of area ratio 1",
+         value(0.9 * lo, false) > at_one && value(1.1 * lo, false) > at_one);
+  report("area distortion grows without bound as the face shrinks", value(1e-3 * lo, false) > 1e5 * at_one);
+  report("area distortion of a flipped face is infinite", std::isinf(value(lo, true)));
+}
+
 void test_energies()
 {
+  test_area_distortion_minimum();
   check_energy("Tutte", SP::Tutte_energy());
   check_energy("Dirichlet", SP::Dirichlet_energy());
   check_energy("Area", SP::Area_energy());
   check_energy("Stretch", SP::Stretch_energy());
   check_energy("MIPS", SP::MIPS_energy());
   check_energy("combined(1,1)", SP::combined_energy(1, 1));
-  for(const char* name : {"tutte", "dirichlet", "area", "stretch", "mips", "combined"}) {
+  check_energy("Area_distortion", SP::Area_distortion_energy());
+  check_energy("balanced()", SP::balanced_energy());
+  for(const char* name : {"tutte", "dirichlet", "area", "stretch", "mips", "combined", "area_distortion", "balanced"}) {
     const std::optional<SP::Energy_mix> mix = SP::energy_by_name(name, 1.5, 0.5);
     report(std::string("energy_by_name knows \"") + name + "\"", bool(mix));
     if(mix)
@@ -549,7 +581,8 @@ void test_jet_arithmetic()
   check_jet_rule("sqrt", [](const auto& x) { return sqrt(x[0] * x[1] + x[8] * x[8]); });
   check_jet_rule("log", [](const auto& x) { return log(x[2] * x[3] + x[4] * x[5]); });
   check_jet_rule("composition", [](const auto& x) {
-    return log(sqrt(x[0] * x[4] + x[8]) / (x[1] * x[2])) * (x[3] - x[6] * x[7]);
+    // No factor that can cancel to near 0: the value is compared relative to itself.
+    return log(sqrt(x[0] * x[4] + x[8]) / (x[1] * x[2]) + 1.0) * (x[3] + x[6] * x[7]);
   });
 }
 

@@ -233,7 +233,7 @@ bool is_input_error(SP::Error_code c)
 template <class ConcurrencyTag>
 SP::Result solve_with_class(const Mesh& mesh, Point_map map)
 {
-  SP::Spherical_parameterizer_3<Mesh, SP::Combined_energy, CGAL::Default, SP::Default_sparse_solver_traits,
+  SP::Spherical_parameterizer_3<Mesh, SP::Balanced_energy, CGAL::Default, SP::Default_sparse_solver_traits,
                                 ConcurrencyTag>
     parameterizer;
   const SP::Error_code code = parameterizer.precompute(mesh);
@@ -298,8 +298,13 @@ void test_cancellation(Mesh mesh, const std::string& mesh_name, SP::Pipeline pip
     return false;
   };
   Point_map map = new_map(mesh, "v:cancel");
-  const SP::Result r =
-    CGAL::spherical_parameterize(mesh, map, SP::parameters::pipeline(pipeline).visitor(cancel));
+  // The paper's recipe with the paper's energy: from its folded central projection, the
+  // default energy (a fold barrier) would be infinite and the solver would not start.
+  const SP::Result r = pipeline == SP::Pipeline::PAPER
+                         ? CGAL::spherical_parameterize(mesh, map, SP::parameters::pipeline(
+                                                          pipeline, SP::parameters::energy(SP::combined_energy(1, 1)))
+                                                                     .visitor(cancel))
+                         : CGAL::spherical_parameterize(mesh, map, SP::parameters::pipeline(pipeline).visitor(cancel));
   std::cerr << name << ": " << describe(r) << std::endl;
   report(name + ": status CANCELLED", r.status == SP::Error_code::CANCELLED, describe(r));
   report(name + ": returns within 1 iteration and 1 visitor call", r.iterations <= 1 && calls <= 1,
@@ -480,8 +485,11 @@ void test_irregular(Mesh mesh, const std::string& what, const std::string& shape
     mesh, again,
     SP::parameters::pipeline(SP::Pipeline::PAPER, SP::parameters::initial_sphere_map(out, SP::parameters::tolerance(1e-12))));
   const double gain = (r.energy - second.energy) / std::abs(r.energy);
-  report(name + ": a minimum (re-solved from its own map, the energy goes down by less than 1e-5)",
-         std::isfinite(second.energy) && gain < 1e-5,
+  // 1e-4, not the paper's energies' 1e-5: the default energy's area term converges linearly
+  // on protrusions, and its stop at the tolerance leaves up to a few 1e-5 (starfish60: 2.5e-5;
+  // doc/DESIGN.md, "Default energy and the area guarantee").
+  report(name + ": a minimum (re-solved from its own map, the energy goes down by less than 1e-4)",
+         std::isfinite(second.energy) && gain < 1e-4,
          "first " + std::to_string(r.energy) + ", re-solved " + std::to_string(second.energy));
 }
 

@@ -5,7 +5,7 @@
 #define CGAL_SPHERICAL_PARAMETERIZE_H
 
 #include <CGAL/Spherical_parameterization/Spherical_parameterizer_3.h>
-#include <CGAL/Spherical_parameterization/Weighted_sum_energy.h>
+#include <CGAL/Spherical_parameterization/Balanced_energy.h>
 #include <CGAL/Spherical_parameterization/named_parameters.h>
 
 #include <CGAL/Named_function_parameters.h>
@@ -18,10 +18,13 @@ namespace CGAL {
 /// vertex point map (the mesh is then mapped in place). One call of
 /// `Spherical_parameterization::Spherical_parameterizer_3`: see it for the method.
 ///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` (needs TBB) or
+///         `CGAL::Parallel_if_available_tag` (the default): whether the per-face work runs on
+///         TBB's threads; the map does not depend on it
 /// \tparam TriangleMesh a model of `FaceListGraph`
 /// \tparam SphereMap a writable property map `vertex_descriptor -> Point_3`
 /// \cgalNamedParamsBegin
-///   \cgalParamNBegin{energy} a model of `SphericalEnergy`; default `combined_energy(1, 1)` \cgalParamNEnd
+///   \cgalParamNBegin{energy} a model of `SphericalEnergy`; default `balanced_energy()` \cgalParamNEnd
 ///   \cgalParamNBegin{pipeline} `Pipeline::ROBUST` (default) or `Pipeline::PAPER` \cgalParamNEnd
 ///   \cgalParamNBegin{initial_sphere_map} a readable map `vertex -> Point_3` to start from \cgalParamNEnd
 ///   \cgalParamNBegin{d_min_correction} default `true` \cgalParamNEnd
@@ -33,7 +36,7 @@ namespace CGAL {
 ///   \cgalParamNBegin{sparse_linear_solver} a model of `SphericalSparseSolverTraits` \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// \return the status, the validity figures of the map and the solver's figures.
-template <class TriangleMesh, class SphereMap,
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class TriangleMesh, class SphereMap,
           class NamedParameters = CGAL::parameters::Default_named_parameters>
 Spherical_parameterization::Result
 spherical_parameterize(const TriangleMesh& tm, SphereMap sphere_map,
@@ -43,17 +46,12 @@ spherical_parameterize(const TriangleMesh& tm, SphereMap sphere_map,
   using parameters::choose_parameter;
   using parameters::get_parameter;
 
-  const auto energy = choose_parameter(get_parameter(np, SP::internal_np::energy_t()), SP::combined_energy(1, 1));
+  const auto energy = choose_parameter(get_parameter(np, SP::internal_np::energy_t()), SP::balanced_energy());
   using Solver = std::decay_t<decltype(choose_parameter(get_parameter(np, internal_np::sparse_linear_solver),
                                                         SP::Default_sparse_solver_traits()))>;
   using Geom_traits = typename GetGeomTraits<TriangleMesh, NamedParameters>::type;
   const Geom_traits traits = choose_parameter<Geom_traits>(get_parameter(np, internal_np::geom_traits));
-#ifdef CGAL_LINKED_WITH_TBB
-  using Concurrency = CGAL::Parallel_tag;  // per-face work on all cores; results do not depend on it
-#else
-  using Concurrency = CGAL::Sequential_tag;
-#endif
-  SP::Spherical_parameterizer_3<TriangleMesh, std::decay_t<decltype(energy)>, Geom_traits, Solver, Concurrency>
+  SP::Spherical_parameterizer_3<TriangleMesh, std::decay_t<decltype(energy)>, Geom_traits, Solver, ConcurrencyTag>
     parameterizer(energy, traits);
 
   SP::Result result;

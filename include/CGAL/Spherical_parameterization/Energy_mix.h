@@ -4,6 +4,7 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_ENERGY_MIX_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_ENERGY_MIX_H
 
+#include <CGAL/Spherical_parameterization/Area_distortion_energy.h>
 #include <CGAL/Spherical_parameterization/Area_energy.h>
 #include <CGAL/Spherical_parameterization/Dirichlet_energy.h>
 #include <CGAL/Spherical_parameterization/MIPS_energy.h>
@@ -19,29 +20,41 @@ namespace CGAL {
 namespace Spherical_parameterization {
 
 /// \ingroup PkgSphericalParameterizationEnergies
-/// The energy chosen at run time: a weighted sum of the five built-in energies, in the order
-/// Tutte, Dirichlet, Area, Stretch, MIPS: what the command line uses. (The default energy of
-/// `spherical_parameterize()` is `combined_energy(1, 1)`, of type `Combined_energy`.)
-using Energy_mix = Weighted_sum<Tutte_energy, Dirichlet_energy, Area_energy, Stretch_energy, MIPS_energy>;
+/// The energy chosen at run time: a weighted sum of the six built-in energies, in the order
+/// Tutte, Dirichlet, Area, Stretch, MIPS, Area_distortion: what the command line uses. (The default energy of
+/// `spherical_parameterize()` is `balanced_energy()`, of type `Balanced_energy`.)
+using Energy_mix =
+  Weighted_sum<Tutte_energy, Dirichlet_energy, Area_energy, Stretch_energy, MIPS_energy, Area_distortion_energy>;
 
 /// \ingroup PkgSphericalParameterizationEnergies
 /// The energy called `name`: "tutte", "dirichlet", "area", "stretch", "mips" (weight `a`),
-/// or "combined" (`a` Dirichlet + `b` Area). Empty for an unknown name or a weight that is
-/// not finite and positive.
+/// "area_distortion" (weight `a`), "combined" (`a` Dirichlet + `b` Area) or "balanced"
+/// (`a` Dirichlet with exact cotangents + `b` Area_distortion: `balanced_energy(b / (a + b))`
+/// times `a + b`; either weight may be 0). Empty for an unknown name or a weight that is not
+/// finite and positive.
 inline std::optional<Energy_mix> energy_by_name(const std::string& name, double a = 1, double b = 1)
 {
   auto positive = [](double w) { return std::isfinite(w) && w > 0; };
-  if(!positive(a) || (name == "combined" && !positive(b)))
+  auto non_negative = [](double w) { return std::isfinite(w) && w >= 0; };
+  // The balanced energy's ends, weights (1, 0) and (0, 1), are the conformal and equal-area maps.
+  const bool valid = name == "balanced" ? non_negative(a) && non_negative(b) && a + b > 0
+                                        : positive(a) && (name != "combined" || positive(b));
+  if(!valid)
     return std::nullopt;
-  Energy_mix::Weights w{0, 0, 0, 0, 0};
+  Energy_mix::Weights w{0, 0, 0, 0, 0, 0};
   if(name == "tutte") w[0] = a;
   else if(name == "dirichlet") w[1] = a;
   else if(name == "area") w[2] = a;
   else if(name == "stretch") w[3] = a;
   else if(name == "mips") w[4] = a;
+  else if(name == "area_distortion") w[5] = a;
   else if(name == "combined") { w[1] = a; w[2] = b; }
+  else if(name == "balanced") { w[1] = a; w[5] = b; }
   else return std::nullopt;
-  return Energy_mix(w, Tutte_energy(), Dirichlet_energy(), Area_energy(), Stretch_energy(), MIPS_energy());
+  // "balanced" is `balanced_energy()`: exact cotangents.
+  const Dirichlet_energy dirichlet = name == "balanced" ? Dirichlet_energy{0, M_PI} : Dirichlet_energy();
+  return Energy_mix(w, Tutte_energy(), dirichlet, Area_energy(), Stretch_energy(), MIPS_energy(),
+                    Area_distortion_energy());
 }
 
 } // namespace Spherical_parameterization

@@ -4,6 +4,7 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_SPHERICAL_PARAMETERIZER_3_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_SPHERICAL_PARAMETERIZER_3_H
 
+#include <CGAL/Spherical_parameterization/Balanced_energy.h>
 #include <CGAL/Spherical_parameterization/Energy_mix.h>
 #include <CGAL/Spherical_parameterization/Error_code.h>
 #include <CGAL/Spherical_parameterization/Progress.h>
@@ -54,17 +55,18 @@ namespace Spherical_parameterization {
 /// last map.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph`
-/// \tparam Energy a model of `SphericalEnergy`, by default `Combined_energy`
+/// \tparam Energy a model of `SphericalEnergy`, by default `Balanced_energy`
 /// \tparam GeomTraits the kernel of the input points, by default that of the mesh's vertex
 ///         point map; its `Compute_x_3` (y, z) functors read the coordinates
 /// \tparam SolverTraits a model of `SphericalSparseSolverTraits`, by default CHOLMOD when
 ///         available, else Eigen's `SimplicialLDLT`
-/// \tparam ConcurrencyTag `CGAL::Sequential_tag` or `CGAL::Parallel_tag` (needs TBB)
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` (needs TBB) or, by
+///         default, `CGAL::Parallel_if_available_tag`
 template <class TriangleMesh,
-          class Energy = Combined_energy,
+          class Energy = Balanced_energy,
           class GeomTraits = CGAL::Default,
           class SolverTraits = Default_sparse_solver_traits,
-          class ConcurrencyTag = CGAL::Sequential_tag>
+          class ConcurrencyTag = CGAL::Parallel_if_available_tag>
 class Spherical_parameterizer_3
 {
   using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
@@ -73,8 +75,8 @@ class Spherical_parameterizer_3
 
 public:
   /// A parameterizer minimizing `energy`, reading the input points with `traits`. The default
-  /// energy is `combined_energy(1, 1)` for `Combined_energy`, `*energy_by_name("combined")`
-  /// for `Energy_mix`, and `Energy()` otherwise.
+  /// energy is `balanced_energy()` for `Balanced_energy`, `combined_energy(1, 1)` for
+  /// `Combined_energy`, the same balanced energy for `Energy_mix`, and `Energy()` otherwise.
   explicit Spherical_parameterizer_3(const Energy& energy = default_energy(), const Geom_traits& traits = Geom_traits())
     : energy_(energy), traits_(traits) {}
 
@@ -199,8 +201,10 @@ private:
 
   static Energy default_energy()
   {
-    if constexpr(std::is_same<Energy, Combined_energy>::value) return combined_energy(1, 1);
-    else if constexpr(std::is_same<Energy, Energy_mix>::value) return *energy_by_name("combined");
+    constexpr double t = default_area_preservation;
+    if constexpr(std::is_same<Energy, Balanced_energy>::value) return balanced_energy(t);
+    else if constexpr(std::is_same<Energy, Combined_energy>::value) return combined_energy(1, 1);
+    else if constexpr(std::is_same<Energy, Energy_mix>::value) return *energy_by_name("balanced", 1 - t, t);
     else return Energy();
   }
 
