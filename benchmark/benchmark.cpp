@@ -214,7 +214,7 @@ struct Run_record
   bool ran = false;          // the child finished and reported
   int status = 0;            // SP::Error_code
   char detail[200] = "";
-  char stages[1000] = "";  // a run through every level of 1.2M faces needs about 300
+  char stages[1000] = "";  // a run through every level of the largest meshes needs about a third
   double seconds = 0;
   std::size_t iterations = 0;
   double energy = 0;
@@ -252,7 +252,7 @@ Run_record run_once(Mesh& mesh, const SP::Energy_mix& energy, SP::Pipeline pipel
   record.ran = true;
   record.status = int(result.status);
   copy_string(record.detail, sizeof(record.detail), result.detail);
-  copy_string(record.stages, sizeof(record.stages), result.stages);
+  copy_string(record.stages, sizeof(record.stages), result.stage_summary());
   record.iterations = result.iterations;
   record.energy = result.energy;
   record.solver_valid = result.is_valid();
@@ -285,10 +285,10 @@ Run_record run_once(Mesh& mesh, const SP::Energy_mix& energy, SP::Pipeline pipel
 
 // Turns the mesh by a rotation fixed by `seed`. The energies, the map's validity and its
 // distortion do not change under a rotation, but the rounding does, and on meshes with
-// protrusions the solver's path follows the rounding: camel, Dirichlet, took 112, 216 and
-// 222 iterations when only the order of a 6 x 6 matrix product in the solver changed
-// (session 40). Repeats of one input would time one path several times; the benchmark
-// times a repeat on each of several turned inputs, and their median is a typical path.
+// protrusions the solver's path follows the rounding: changing only the order of a small
+// matrix product in the solver can nearly double the iteration count. Repeats of one
+// input would time one path several times; the benchmark times a repeat on each of several
+// turned inputs, and their median is a typical path.
 void turn(Mesh& mesh, int seed)
 {
   std::mt19937 random(seed);
@@ -471,7 +471,7 @@ void use_package_settings(Eigen::CholmodSupernodalLLT<Matrix, UpLo>& solver)
 // package's own factorizations (Cholmod_traits): the yardstick is not to carry an overhead
 // that the package's runs avoid. OpenBLAS has its own thread count, and with `huge_pages`
 // CHOLMOD's large blocks are on transparent huge pages, which make some factorizations
-// faster (302k faces: 0.25 against 0.28 s; 1.2M: 1.75 against 1.6 s; tools/process_tuning.h).
+// faster and others slower (tools/process_tuning.h).
 template <class Solver>
 double solve_time(const Sparse& matrix, const Eigen::VectorXd& rhs, bool huge_pages = false)
 {

@@ -49,7 +49,7 @@ int main(int argc, char** argv)
     log_area_mean = d.log_area_ratio.mean;
     const auto& w = parameterizer.energy().weights();
     std::cout << "weights (" << w[0] << ", " << w[1] << "): " << r.message() << ", " << r.iterations
-              << " iterations (" << r.stages << "), " << r.time_seconds << " s; mean |log area ratio| "
+              << " iterations (" << r.stage_summary() << "), " << r.time_seconds << " s; mean |log area ratio| "
               << d.log_area_ratio.mean << ", mean angle error " << d.angle_error.mean << " deg\n";
     return r.is_valid() && d.is_valid();
   };

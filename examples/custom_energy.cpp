@@ -85,7 +85,7 @@ int main(int argc, char** argv)
     mesh, sphere, SP::parameters::energy(Dirichlet_log_area_energy{lambda}).number_of_iterations(500));
 
   std::cout << "Dirichlet + " << lambda << " log-area: " << r.message() << ", " << r.iterations << " iterations ("
-            << r.stages << "), " << r.time_seconds << " s\n";
+            << r.stage_summary() << "), " << r.time_seconds << " s\n";
   if(!r.is_valid()) {
     std::cerr << r.detail << "\n";
     return 1;

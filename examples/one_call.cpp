@@ -42,7 +42,7 @@ int main(int argc, char** argv)
             << "status     " << r.message() << (r.detail.empty() ? "" : " (" + r.detail + ")") << "\n"
             << "valid      " << (r.is_valid() ? "yes" : "no") << ": " << r.flipped << " flipped, " << r.degenerate
             << " degenerate, degree " << r.degree << (r.inward_oriented ? ", input oriented inward" : "") << "\n"
-            << "solver     " << r.iterations << " iterations (" << r.stages << "), energy " << r.energy << ", "
+            << "solver     " << r.iterations << " iterations (" << r.stage_summary() << "), energy " << r.energy << ", "
             << r.time_seconds << " s\n";
   if(!r.is_valid())
     return 1;

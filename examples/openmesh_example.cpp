@@ -46,7 +46,7 @@ int main(int argc, char** argv)
   auto sphere = get(CGAL::dynamic_vertex_property_t<Point>(), mesh);
   const SP::Result r = CGAL::spherical_parameterize(mesh, sphere);
   std::cout << "OpenMesh TriMesh, " << mesh.n_vertices() << " vertices: " << r.message() << ", " << r.iterations
-            << " iterations (" << r.stages << "), valid map: " << (r.is_valid() ? "yes" : "no") << "\n";
+            << " iterations (" << r.stage_summary() << "), valid map: " << (r.is_valid() ? "yes" : "no") << "\n";
   if(!r.is_valid())
     return 1;
   const SP::Distortion_report d = SP::measure_distortion(mesh, sphere);

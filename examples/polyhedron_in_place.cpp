@@ -36,7 +36,7 @@ int main(int argc, char** argv)
   // The input positions are read once, before the solve, so overwriting them is safe. They
   // are gone afterwards: measure_distortion() needs both, so the figures come from Result.
   const SP::Result r = CGAL::spherical_parameterize(polyhedron, get(CGAL::vertex_point, polyhedron));
-  std::cout << "status " << r.message() << ", " << r.iterations << " iterations (" << r.stages << "), valid map: "
+  std::cout << "status " << r.message() << ", " << r.iterations << " iterations (" << r.stage_summary() << "), valid map: "
             << (r.is_valid() ? "yes" : "no") << ", degree " << r.degree << ", smallest area ratio "
             << r.min_area_ratio << "\n";
 

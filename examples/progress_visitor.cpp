@@ -45,12 +45,12 @@ struct Early_stop
     const double decrease = same_stage ? (previous_energy - p.energy) / std::abs(p.energy) : HUGE_VAL;
     stage = p.stage;
     previous_energy = p.energy;
-    std::printf("%-8s iteration %3zu  energy %-12.6g  relative decrease %-10.3g  step %-6.3g  %.2f s\n", p.stage,
+    std::printf("%-12s iteration %3zu  energy %-12.6g  relative decrease %-10.3g  step %-6.3g  %.2f s\n", p.stage,
                 p.iteration, p.energy, same_stage ? decrease : std::nan(""), p.step, p.elapsed_seconds);
 
-    // Only the last stage, "target" (your energy), keeps every iterate fold-free in the robust
-    // pipeline. A stop during "tutte" or "untangle" would return a map with folds, so let them run.
-    if(stage != "target")
+    // The start-up stages may leave folds behind them, so let them run: a stop in any other
+    // stage of the robust pipeline returns a valid map.
+    if(stage == "tutte" || stage == "untangle" || stage == "local untangling" || stage == "plain")
       return true;
     if(decrease < threshold) { reason = "the decrease fell below the threshold"; return false; }
     if(p.iteration >= max_iterations) { reason = "the iteration budget is spent"; return false; }
@@ -77,7 +77,7 @@ int main(int argc, char** argv)
 
   // A cancelled solve reports CANCELLED, with a valid map if one was reached before the stop.
   std::cout << "status " << r.message() << (*visitor.reason ? std::string(": ") + visitor.reason : "") << "; "
-            << r.iterations << " iterations (" << r.stages << "), valid map: " << (r.is_valid() ? "yes" : "no")
+            << r.iterations << " iterations (" << r.stage_summary() << "), valid map: " << (r.is_valid() ? "yes" : "no")
             << ", smallest area ratio " << r.min_area_ratio << "\n";
   return r.is_valid() ? 0 : 1;
 }

@@ -279,7 +279,7 @@ void print_report(const Options& o, const Mesh& mesh, const SP::Result& r, const
             << "status           " << quote_status(r) << "\n"
             << "valid map        " << (d.is_valid() ? "yes" : "no") << ": " << d.flipped << " flipped, "
             << d.degenerate << " degenerate, degree " << d.degree << ", max | |x|-1 | " << d.max_norm_error << "\n"
-            << "solver           " << r.iterations << " iterations (" << r.stages << "), energy " << r.energy
+            << "solver           " << r.iterations << " iterations (" << r.stage_summary() << "), energy " << r.energy
             << ", " << r.time_seconds << " s\n"
             << "quasi-conformal  mean " << d.quasi_conformal.mean << ", 95% " << d.quasi_conformal.percentile_95
             << ", max " << d.quasi_conformal.max << "\n"

@@ -36,7 +36,7 @@ constexpr std::size_t max_faces = 200;
 [[noreturn]] inline void violation(const char* what, const SP::Result& r)
 {
   std::fprintf(stderr, "INVARIANT VIOLATED: %s\n  status %d (%s), detail '%s', valid %d, iterations %zu, stages '%s'\n",
-               what, int(r.status), r.message(), r.detail.c_str(), int(r.valid), r.iterations, r.stages.c_str());
+               what, int(r.status), r.message(), r.detail.c_str(), int(r.valid), r.iterations, r.stage_summary().c_str());
   std::abort();
 }
 

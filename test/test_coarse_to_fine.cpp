@@ -4,21 +4,22 @@
 // The parts of the robust pipeline's coarse-to-fine solve, each against the property it is
 // there for: the progressive mesh (a closed genus-0 manifold at every level, undone exactly,
 // area shares kept), the fans of the vertex splits, the placement of a split vertex in the
-// kernel of its fan, the mean value point, the Moebius boost, the floor patch, and the
-// two-grid cycle of the input's first step.
+// kernel of its fan, the mean value point, the Moebius boost, the floor patch, the
+// two-grid cycle of the input's first step, and the choice of a level's next stage.
 // Meshes built in code only (the `fast` CTest label, also run under the sanitizers).
 // Usage: test_coarse_to_fine [ignored arguments]
 
 #include <CGAL/Spherical_parameterization/Dirichlet_energy.h>
 #include <CGAL/Spherical_parameterization/Sparse_solver_traits.h>
-#include <CGAL/Spherical_parameterization/internal/Coarse_to_fine.h>
-#include <CGAL/Spherical_parameterization/internal/Floor_patch.h>
-#include <CGAL/Spherical_parameterization/internal/Newton_solver.h>
-#include <CGAL/Spherical_parameterization/internal/Progressive_mesh.h>
-#include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
-#include <CGAL/Spherical_parameterization/internal/kernel_placement.h>
-#include <CGAL/Spherical_parameterization/internal/map_validity.h>
-#include <CGAL/Spherical_parameterization/internal/mobius_boost.h>
+#include <CGAL/Spherical_parameterization/internal/hierarchy/Coarse_to_fine.h>
+#include <CGAL/Spherical_parameterization/internal/pipeline/Floor_patch.h>
+#include <CGAL/Spherical_parameterization/internal/pipeline/next_stage.h>
+#include <CGAL/Spherical_parameterization/internal/newton/Newton_solver.h>
+#include <CGAL/Spherical_parameterization/internal/hierarchy/Progressive_mesh.h>
+#include <CGAL/Spherical_parameterization/internal/energies/Spherical_energy.h>
+#include <CGAL/Spherical_parameterization/internal/hierarchy/kernel_placement.h>
+#include <CGAL/Spherical_parameterization/internal/validity/map_validity.h>
+#include <CGAL/Spherical_parameterization/internal/newton/mobius_boost.h>
 #include <CGAL/Spherical_parameterization/remesh_on_icosphere.h>
 
 #include "test_support.h"
@@ -526,6 +527,55 @@ void test_slow_capped_tail()
          !Newton::slow_capped_tail(std::vector<double>(window, 10.0), window + 1, threshold));
 }
 
+// The choice of the next stage of a level's fold-free minimization, against the design:
+// every path of doc/DESIGN.md's "The fold-free minimization of a level", and nothing after
+// an interruption.
+void test_next_stage()
+{
+  using SP::Stage;
+  auto next = [](Stage done, I::Level_facts f) { return I::next_stage(done, f); };
+  auto input = [] { I::Level_facts f; f.is_input = true; return f; };
+  I::Level_facts f;
+
+  f = input(); f.fold_free_minimum = true; f.above_floor = true;
+  report("next stage: a fold-free minimum above the floor is the level's result", !next(Stage::OPTIMISTIC, f));
+  f = I::Level_facts(); f.fold_free_minimum = true; f.few_under_floor = true;
+  report("next stage: so is the last coarser level's with few faces under the floor", !next(Stage::OPTIMISTIC, f));
+  f = input(); f.fold_free_minimum = true;
+  report("next stage: the input's fold-free minimum under the floor goes to the floor patch",
+         next(Stage::OPTIMISTIC, f) == Stage::FLOOR_PATCH);
+  f = I::Level_facts(); f.fold_free_minimum = true;
+  report("next stage: a coarser level's goes to the continuation", next(Stage::OPTIMISTIC, f) == Stage::CONTINUATION);
+  f = input(); f.folded = true;
+  report("next stage: a folded minimum is untangled locally", next(Stage::OPTIMISTIC, f) == Stage::LOCAL_UNTANGLING);
+  f = I::Level_facts(); f.folded = true; f.optimistic_ran = false;
+  report("next stage: not after the smoothing step alone: the continuation",
+         next(Stage::OPTIMISTIC, f) == Stage::CONTINUATION);
+  f = input(); f.folded = true; f.untangled = true;
+  report("next stage: the input untangled locally goes to the floor stage", next(Stage::LOCAL_UNTANGLING, f) == Stage::FLOOR);
+  f = I::Level_facts(); f.folded = true; f.untangled = true; f.above_floor = true;
+  report("next stage: a coarser level untangled above the floor is done", !next(Stage::LOCAL_UNTANGLING, f));
+  f = I::Level_facts(); f.folded = true; f.untangled = true;
+  report("next stage: under the floor it goes to the continuation",
+         next(Stage::LOCAL_UNTANGLING, f) == Stage::CONTINUATION);
+  f = input(); f.folded = true;
+  report("next stage: a failed local untangling goes to the continuation",
+         next(Stage::LOCAL_UNTANGLING, f) == Stage::CONTINUATION);
+  report("next stage: the input's continuation ends on the floor stage", next(Stage::CONTINUATION, input()) == Stage::FLOOR);
+  report("next stage: a coarser level stops on the continuation's cushion", !next(Stage::CONTINUATION, I::Level_facts()));
+  f = input(); f.patch_sufficed = true;
+  report("next stage: a sufficient floor patch skips the floor stage", next(Stage::FLOOR_PATCH, f) == Stage::DEEP_FACES);
+  report("next stage: else the floor stage follows it", next(Stage::FLOOR_PATCH, input()) == Stage::FLOOR);
+  report("next stage: deep faces after the floor stage", next(Stage::FLOOR, input()) == Stage::DEEP_FACES);
+  report("next stage: nothing after the deep faces", !next(Stage::DEEP_FACES, input()));
+  bool nothing_after_interruption = true;
+  for(Stage done : {Stage::OPTIMISTIC, Stage::LOCAL_UNTANGLING, Stage::CONTINUATION, Stage::FLOOR_PATCH, Stage::FLOOR}) {
+    f = input(); f.interrupted = true; f.folded = true;
+    nothing_after_interruption = nothing_after_interruption && !next(done, f);
+  }
+  report("next stage: nothing after an interruption", nothing_after_interruption);
+}
+
 } // namespace
 
 int main()
@@ -539,6 +589,7 @@ int main()
   test_two_grid_cycle();
   test_parallel_splits();
   test_slow_capped_tail();
+  test_next_stage();
   std::cout << passed << " passed, " << failed << " failed" << std::endl;
   return failed == 0 ? 0 : 1;
 }

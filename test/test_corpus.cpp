@@ -46,7 +46,7 @@ int main(int argc, char** argv)
               << " faces, " << r.message() << ", flipped " << d.flipped << ", degenerate " << d.degenerate
               << ", degree " << d.degree << ", min area ratio " << d.min_area_ratio << ", mean |log area ratio| "
               << d.log_area_ratio.mean << ", resampling error mean " << resampled.mean << " max " << resampled.max << ", "
-              << r.iterations << " iterations (" << r.stages << "), "
+              << r.iterations << " iterations (" << r.stage_summary() << "), "
               << r.time_seconds << " s\n";
     (ok ? passed : failed)++;
   }

@@ -20,13 +20,13 @@
 #include <CGAL/Spherical_parameterization/Tutte_energy.h>
 #include <CGAL/Spherical_parameterization/Weighted_sum_energy.h>
 #include <CGAL/Spherical_parameterization/d_min_correction.h>
-#include <CGAL/Spherical_parameterization/internal/Fold_barrier.h>
-#include <CGAL/Spherical_parameterization/internal/Symmetric_eigen.h>
-#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
-#include <CGAL/Spherical_parameterization/internal/Untangling_energy.h>
-#include <CGAL/Spherical_parameterization/internal/project_psd.h>
-#include <CGAL/Spherical_parameterization/internal/step_bound.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_basis.h>
+#include <CGAL/Spherical_parameterization/internal/energies/Fold_barrier.h>
+#include <CGAL/Spherical_parameterization/internal/newton/Symmetric_eigen.h>
+#include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/energies/Untangling_energy.h>
+#include <CGAL/Spherical_parameterization/internal/newton/project_psd.h>
+#include <CGAL/Spherical_parameterization/internal/newton/step_bound.h>
+#include <CGAL/Spherical_parameterization/internal/newton/tangent_basis.h>
 
 #include "test_support.h"
 

@@ -5,7 +5,8 @@
 // CGAL's sample meshes when their folder is given as argv[1].
 // Usage: test_input_checks [path/to/data/meshes]
 
-#include <CGAL/Spherical_parameterization/internal/check_input.h>
+#include <CGAL/Spherical_parameterization/internal/input/check_input.h>
+#include <CGAL/Spherical_parameterization/internal/input/point_coordinates.h>
 
 #include "test_support.h"
 
@@ -53,7 +54,9 @@ std::string data_dir;
 template <class M>
 SP::internal::Input_report check(const M& m)
 {
-  return SP::internal::check_input(m, get(CGAL::vertex_point, m));
+  const auto vpm = get(CGAL::vertex_point, m);
+  using Kernel = typename CGAL::Kernel_traits<typename boost::property_traits<decltype(vpm)>::value_type>::Kernel;
+  return SP::internal::check_input(m, [&](auto v) { return SP::internal::point_coordinates(Kernel(), get(vpm, v)); });
 }
 
 /// The expected code, a non-empty detail (empty for OK), and every expected word in it.

@@ -211,7 +211,7 @@ bool same_result(const SP::Result& a, const SP::Result& b)
 std::string describe(const SP::Result& r)
 {
   std::string s = std::string(r.message()) + (r.detail.empty() ? "" : " (" + r.detail + ")");
-  return s + ", " + std::to_string(r.iterations) + " iterations [" + r.stages + "], valid " + std::to_string(r.valid);
+  return s + ", " + std::to_string(r.iterations) + " iterations [" + r.stage_summary() + "], valid " + std::to_string(r.valid);
 }
 
 /// What `measure_distortion()` found, for the messages that compare it with `Result::valid`.
@@ -558,11 +558,9 @@ void test_irregular_shapes()
   std::cerr << "time irregular shapes: " << seconds_since(start) << " s" << std::endl;
 }
 
-/// A coarser level whose optimistic stage ends folded by a face or two next to its minimum
-/// (cortex48, Combined: at 13500 vertices, from the first iterate on): untangled on their
-/// neighbourhood, that minimum is the level's result, with no continuation after it. Before,
-/// the continuation restarted from the stage's start (cortex100: 15 capped iterations for the
-/// same minimum, doc/NOTES.md, session 45). Fails if no coarser level ends on its untangling.
+/// A cortex-like ball folded by narrow creases: coarser levels end their optimistic stage
+/// folded by a face or two next to their minimum, which the local untangling repairs
+/// (`next_stage()`'s unit test covers that decision). The map must be valid.
 void test_coarse_level_untangled()
 {
   Mesh mesh = synthetic_shapes::cortex<Point>(48);
@@ -570,42 +568,37 @@ void test_coarse_level_untangled()
   Point_map out = new_map(mesh, "v:cortex");
   const SP::Result r = CGAL::spherical_parameterize(mesh, out, SP::parameters::energy(SP::combined_energy(1, 1)));
   const SP::Distortion_report d = SP::measure_distortion(mesh, out);
-  std::cerr << name << ": " << describe(r) << "; " << r.stages << std::endl;
+  std::cerr << name << ": " << describe(r) << "; " << r.stage_summary() << std::endl;
   report(name + ": valid map", r.status == SP::Error_code::OK && r.valid && d.is_valid(), describe(r));
-  bool level_ends_untangled = false;
-  std::istringstream levels(r.stages);
-  for(std::string level; std::getline(levels, level, '|');) {
-    const std::size_t at = level.rfind("untangle:");
-    const bool last_stage = at != std::string::npos && level.find_first_not_of("0123456789 ", at + 9) == std::string::npos;
-    level_ends_untangled = level_ends_untangled || (level.find("input") == std::string::npos && last_stage);
-  }
-  report(name + ": a coarser level ends on its local untangling", level_ends_untangled, r.stages);
 }
 
 } // namespace
 
-int main()
+// With the argument "irregular": the maps of irregular shapes (stretched, jittered, slivers,
+// isosurfaces), dozens of seconds in a Release build; without it, the rest, seconds, which
+// also run under the sanitizers.
+int main(int argc, char** argv)
 {
   rng.seed(2026);
   const auto start = std::chrono::steady_clock::now();
-
-  test_determinism();
-
-  const auto interruptions = std::chrono::steady_clock::now();
-  // Cancelled in the target stage after a fold-free start (valid map), in the Tutte stage
-  // from a folded one, and in the PAPER pipeline from a folded one (no valid map met).
-  test_cancellation(bumpy_ellipsoid(2), "bumpy ellipsoid", SP::Pipeline::ROBUST);
-  test_cancellation(bent_tube(2), "C-shaped tube", SP::Pipeline::ROBUST);
-  test_cancellation(bent_tube(2), "C-shaped tube", SP::Pipeline::PAPER);
-  test_time_limit(bumpy_ellipsoid(2), "bumpy ellipsoid");
-  test_time_limit(bent_tube(2), "C-shaped tube");
-  std::cerr << "time interruptions: " << seconds_since(interruptions) << " s" << std::endl;
-
-  test_non_finite_start();
-  test_extremes();
-  test_irregular_shapes();
-  test_coarse_level_untangled();
-
+  const bool irregular = argc > 1 && std::string(argv[argc - 1]) == "irregular";
+  if(irregular) {
+    test_irregular_shapes();
+    test_coarse_level_untangled();
+  } else {
+    test_determinism();
+    const auto interruptions = std::chrono::steady_clock::now();
+    // Cancelled in the optimistic stage after a fold-free start (valid map), in the Tutte
+    // stage from a folded one, and in the PAPER pipeline from a folded one (no valid map met).
+    test_cancellation(bumpy_ellipsoid(2), "bumpy ellipsoid", SP::Pipeline::ROBUST);
+    test_cancellation(bent_tube(2), "C-shaped tube", SP::Pipeline::ROBUST);
+    test_cancellation(bent_tube(2), "C-shaped tube", SP::Pipeline::PAPER);
+    test_time_limit(bumpy_ellipsoid(2), "bumpy ellipsoid");
+    test_time_limit(bent_tube(2), "C-shaped tube");
+    std::cerr << "time interruptions: " << seconds_since(interruptions) << " s" << std::endl;
+    test_non_finite_start();
+    test_extremes();
+  }
   std::cerr << "time total: " << seconds_since(start) << " s" << std::endl;
   std::cout << passed << " passed, " << failed << " failed" << std::endl;
   return failed == 0 ? 0 : 1;

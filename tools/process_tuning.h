@@ -12,8 +12,8 @@
 //    supernode of a supernodal factorization, for loops as short as clearing a supernode,
 //    whatever the cores. On two cores those threads wait on each other at every region's
 //    barrier, and even a region of one thread goes through libgomp's team start and end,
-//    whose barrier ends with a `futex` system call (120k of them in one solve of bunny00, 75k
-//    faces), dear in a virtual machine.
+//    whose barrier ends with a `futex` system call, so many of them per solve, dear in a
+//    virtual machine.
 //    How: this header defines `GOMP_parallel`, libgomp's entry point of a parallel region, in
 //    the program; the dynamic linker then binds CHOLMOD's calls to it instead of libgomp's
 //    (symbol interposition). Once enabled, it calls a region's body directly if the call
@@ -24,12 +24,11 @@
 // 2. OpenBLAS, when it is the BLAS of the process, runs one thread short of its count (one
 //    thread on two cores), unless `OPENBLAS_NUM_THREADS` sets the count.
 //    Why: OpenBLAS's threads spin while they wait. When another process holds a core, a
-//    factorization with two BLAS threads on two cores slows down badly (a 302k-face solve
-//    1.5 times slower, and 30 times during a parallel build).
+//    factorization with two BLAS threads on two cores slows down badly, and many times over
+//    while a parallel build runs.
 // 3. For the benchmark's yardstick, `Yardstick_settings`: OpenBLAS back at the count the
 //    process started with while it lives, and CHOLMOD's large blocks on transparent huge
-//    pages if asked, which make some plain factorizations faster (a Laplacian at 302k
-//    faces: 0.25 against 0.28 s).
+//    pages if asked, which make some plain factorizations a little faster.
 //
 // `SPHERICAL_PARAMETERIZATION_NO_PROCESS_TUNING=1` in the environment leaves `enable()` without
 // effect (the interposed `GOMP_parallel` then passes every region on), to measure what the

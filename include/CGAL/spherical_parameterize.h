@@ -49,7 +49,10 @@ spherical_parameterize(const TriangleMesh& tm, SphereMap sphere_map,
   const auto energy = choose_parameter(get_parameter(np, SP::internal_np::energy_t()), SP::balanced_energy());
   using Solver = std::decay_t<decltype(choose_parameter(get_parameter(np, internal_np::sparse_linear_solver),
                                                         SP::Default_sparse_solver_traits()))>;
-  using Geom_traits = typename GetGeomTraits<TriangleMesh, NamedParameters>::type;
+  // The kernel of the points unless the user gives traits (a point type with no kernel needs them).
+  using Given_traits =
+    typename internal_np::Lookup_named_param_def<internal_np::geom_traits_t, NamedParameters, CGAL::Default>::type;
+  using Geom_traits = typename SP::internal::Geom_traits_of<TriangleMesh, Given_traits, NamedParameters>::type;
   const Geom_traits traits = choose_parameter<Geom_traits>(get_parameter(np, internal_np::geom_traits));
   SP::Spherical_parameterizer_3<TriangleMesh, std::decay_t<decltype(energy)>, Geom_traits, Solver, ConcurrencyTag>
     parameterizer(energy, traits);

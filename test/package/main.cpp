@@ -36,7 +36,7 @@ int main(int argc, char** argv)
   const SP::Result r = CGAL::spherical_parameterize(mesh, sphere);
   const SP::Distortion_report d = SP::measure_distortion(mesh, sphere);
   std::cout << num_vertices(mesh) << " vertices: " << r.message() << ", " << r.iterations << " iterations ("
-            << r.stages << "), valid " << (r.is_valid() ? "yes" : "no") << ", mean |log area ratio| "
+            << r.stage_summary() << "), valid " << (r.is_valid() ? "yes" : "no") << ", mean |log area ratio| "
             << d.log_area_ratio.mean << "\n";
   return r.is_valid() && d.is_valid() ? 0 : 1;
 }

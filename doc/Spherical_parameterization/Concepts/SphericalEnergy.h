@@ -24,12 +24,14 @@ Requirements on the values:
   `face_data()` is called, so that lengths and areas compare with those of the chord
   triangles whatever the size of the model;
 - `flat_energy()` is `const` and may be called from several threads at once (the faces are
-  evaluated in parallel with `CGAL::Parallel_tag`): it must not modify shared state.
+  evaluated in parallel with `CGAL::Parallel_tag`, the default when TBB is linked): it must
+  not modify shared state.
 
 A model is copied by `CGAL::Spherical_parameterization::Spherical_parameterizer_3` and by
 `CGAL::spherical_parameterize()`. It must be default constructible if the parameterizer is
-constructed without an energy (except for `Combined_energy` and `Energy_mix`, whose defaults
-are `combined_energy(1, 1)` and `energy_by_name("combined")`).
+constructed without an energy (except for `Balanced_energy`, `Combined_energy` and
+`Energy_mix`, whose defaults are `balanced_energy()`, `combined_energy(1, 1)` and the same
+balanced energy).
 
 \cgalRefines `CopyConstructible`
 
@@ -38,6 +40,7 @@ are `combined_energy(1, 1)` and `energy_by_name("combined")`).
 \cgalHasModel `CGAL::Spherical_parameterization::Area_energy`
 \cgalHasModel `CGAL::Spherical_parameterization::Stretch_energy`
 \cgalHasModel `CGAL::Spherical_parameterization::MIPS_energy`
+\cgalHasModel `CGAL::Spherical_parameterization::Area_distortion_energy`
 \cgalHasModel `CGAL::Spherical_parameterization::Weighted_sum`
 
 \sa \ref SPCustomEnergy in the User Manual, and the example \ref custom_energy.cpp.

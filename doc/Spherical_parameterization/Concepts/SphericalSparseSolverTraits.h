@@ -5,10 +5,10 @@
 The sparse symmetric solver of the Newton systems of
 `CGAL::Spherical_parameterization::Spherical_parameterizer_3`. The matrices have the
 size \f$ 2n \times 2n \f$ for \f$ n \f$ vertices (two tangent coordinates per vertex) and
-one sparsity pattern per mesh: `analyze_pattern()` is called once per mesh (the input and
-each level of the coarse-to-fine solve), then `factorize()` and `solve()` at every
-iteration, `factorize()` possibly several times per iteration while the solver searches
-for the shift that makes the matrix positive definite.
+one sparsity pattern per mesh: `analyze_pattern()` is called once per mesh (the input, each
+level of the coarse-to-fine solve, and each patch of a map that a stage frees), then
+`factorize()` and `solve()` at every iteration, `factorize()` possibly several times per
+iteration while the solver searches for the shift that makes the matrix positive definite.
 
 Only the lower triangle of the matrix is stored and must be read. `factorize()` is the test
 of positive definiteness of the solver: it must return `false` for a matrix that is not

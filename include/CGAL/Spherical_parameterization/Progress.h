@@ -4,6 +4,8 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_PROGRESS_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_PROGRESS_H
 
+#include <CGAL/Spherical_parameterization/Result.h>
+
 #include <cstddef>
 
 namespace CGAL {
@@ -13,7 +15,7 @@ namespace Spherical_parameterization {
 /// What a visitor learns after each solver iteration.
 struct Progress
 {
-  const char* stage = "";       ///< "tutte", "untangle", "refine", "target", "floor patch"
+  const char* stage = "";       ///< the stage's name, `stage_name()` of a `Stage`
   std::size_t iteration = 0;    ///< iterations done in all stages so far
   double energy = 0;            ///< energy of the stage after this iteration
   double newton_decrement = 0;  ///< predicted decrease, `-g . d`

@@ -26,8 +26,8 @@ struct Reference_triangle
   /// The smallest input area that energies of area take for this triangle (0: none). The
   /// parameterizer sets 0.003 times the square of the local edge length, which exceeds `area`
   /// only on faces much smaller than the edges around them, such as the clusters of
-  /// near-coincident vertices of isosurfaces (see the user manual): an area target of 1e-12 of
-  /// the mesh's made the area energy stiff enough to leave no valid map.
+  /// near-coincident vertices of isosurfaces (see the user manual): far tinier area targets
+  /// make the area energy stiff enough to leave no valid map.
   double area_floor = 0;
 
   Reference_triangle() = default;

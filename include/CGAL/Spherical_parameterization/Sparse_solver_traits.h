@@ -7,7 +7,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
-#include <CGAL/Spherical_parameterization/internal/Vertex_ordered_cholmod.h>
+#include <CGAL/Spherical_parameterization/internal/backends/Vertex_ordered_cholmod.h>
 #include <Eigen/CholmodSupport>
 #endif
 
@@ -52,21 +52,16 @@ private:
 /// (`nrelax`; CHOLMOD's default 4, 16, 48), as each supernode costs BLAS calls. Coarser
 /// supernodes (32, 96, 192) and a higher switch (80) are faster when CHOLMOD's OpenMP
 /// regions run on several threads; these are faster when they run on the calling thread
-/// (see below), as in the benchmark. Whole runs against those settings, so: 302k faces 2.90 -> 2.65 s (medians of 4), each of the 21 corpus runs that
-/// factor supernodally 1 to 7% faster (up to 16%), held-out sizes 2 to 8%, and the factor
-/// at 302k faces 392 -> 277 MB; with the switch at 40, the meshes of 40 to 80 flops per
-/// entry 10 to 25% faster (man, 35k faces, 69: 2.35 -> 1.86 s; homer, cow), the others
-/// alike.
+/// (see below), as in the benchmark, and they also make a smaller factor (see doc/DESIGN.md).
 /// From 50000 vertices on, the fill-reducing ordering is METIS's on the mesh's vertex graph,
 /// expanded to the two unknowns of each vertex (a matrix of even size is taken to be made of
 /// such 2x2 blocks; any other matrix is still factored correctly, perhaps with more fill):
-/// at 1.2M faces the analysis takes 3.7 s instead of CHOLMOD's own 7.9 s, and at 300k
-/// faces the factorizations run 25 to 35% faster.
+/// on large meshes it is cheaper to compute than CHOLMOD's own ordering, or gives a factor of
+/// fewer flops.
 /// Every supernodal factor is given its matrix already in its order: the values are copied
 /// into a permuted matrix kept for that, where CHOLMOD would transpose the lower triangle twice
-/// into fresh memory at each factorization. The factor is the same, bit for bit; held-out
-/// meshes at 100k to 300k faces ran 2 to 5% faster (bull subdivided twice, 198k faces: 12.72 ->
-/// 12.14 s, medians of 3), and the copy adds about 165 MB to the peak at 1.2M faces.
+/// into fresh memory at each factorization. The factor is the same, bit for bit; large
+/// meshes solve a little faster, and the copy adds to the peak memory.
 /// The solver changes nothing of the process beyond its own CHOLMOD objects: OpenBLAS's
 /// thread count, CHOLMOD's OpenMP regions and SuiteSparse's allocator stay as the program set
 /// them, and two solvers may run on two threads at once. What tunes those for a whole process
@@ -112,10 +107,9 @@ public:
   }
 
   /// Allocates the factor's numbers for the analysed pattern and writes them once, so that
-  /// the first factorization does not meet fresh memory: 0.6 to 0.9 s of page faults for a
-  /// 392 MB factor at 302k faces (coarser supernodes than now) on the machine we measured (a
-  /// virtual machine), the first factorization taking 1.45 s against 0.6 s for the next
-  /// ones. Another thread may do it while this object is otherwise unused. Supernodal
+  /// the first factorization does not meet fresh memory: the page faults of a large factor
+  /// can make the first factorization much slower than the next ones, notably in a virtual
+  /// machine. Another thread may do it while this object is otherwise unused. Supernodal
   /// factors only: the simplicial ones are small.
   void allocate_factor()
   {

@@ -4,8 +4,8 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_SPHERE_POINT_LOCATION_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_SPHERE_POINT_LOCATION_H
 
-#include <CGAL/Spherical_parameterization/internal/Spherical_triangulation.h>
-#include <CGAL/Spherical_parameterization/internal/indexed_triangles.h>
+#include <CGAL/Spherical_parameterization/internal/sphere/Spherical_triangulation.h>
+#include <CGAL/Spherical_parameterization/internal/input/indexed_triangles.h>
 
 #include <CGAL/Default.h>
 #include <CGAL/Kernel/global_functions.h>
@@ -71,12 +71,9 @@ struct Is_point_3<T, std::void_t<typename T::R::Point_3>> : std::is_same<T, type
 /// and the target: a few steps on average, more where the map squeezes many faces into one cell.
 /// Queries are `const` and may run in parallel.
 ///
-/// Choice of method, measured (one thread, medians of 5 runs of a million random
-/// directions): the walk takes 0.07 s per million queries on triceratops' map (5.7k faces)
-/// and 0.29 s on a 330k-face map, against 0.73 s and 1.9 s for a ray shot from the centre
+/// Choice of method: the walk answers several times faster than a ray shot from the centre
 /// into a `CGAL::AABB_tree` of the chord triangles, which finds the same faces. Queries that
-/// follow each other closely (a scanline) are faster still with a hint, `locate(d, previous)`:
-/// 0.02 s and 0.05 s per million. Building takes 1.5 ms and 0.13 s.
+/// follow each other closely (a scanline) are faster still with a hint, `locate(d, previous)`.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph`
 /// \tparam GeomTraits a CGAL kernel, for the `Point_3` and `Vector_3` types of the answers;

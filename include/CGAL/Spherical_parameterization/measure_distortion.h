@@ -4,9 +4,9 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_MEASURE_DISTORTION_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_MEASURE_DISTORTION_H
 
-#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
-#include <CGAL/Spherical_parameterization/internal/indexed_triangles.h>
-#include <CGAL/Spherical_parameterization/internal/map_validity.h>
+#include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/input/indexed_triangles.h>
+#include <CGAL/Spherical_parameterization/internal/validity/map_validity.h>
 
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/assertions.h>
@@ -93,7 +93,7 @@ struct Distortion_report
   /// on the unit sphere (to 1e-12), which is the validity contract of `Result`.
   bool is_valid() const
   {
-    return flipped == 0 && degenerate == 0 && std::abs(degree - 1) < 1e-6 && max_norm_error <= 1e-12;
+    return internal::is_valid_map(flipped, degenerate, degree, max_norm_error);
   }
 };
 
@@ -193,7 +193,6 @@ inline double chord_area(const Faces& faces, const Points& x)
 struct Face_figures
 {
   std::vector<Weighted_value> quasi_conformal, angle_error, log_area_ratio;
-  double min_area_ratio = std::numeric_limits<double>::infinity();
   double stretch_sum = 0, stretch_weight = 0, linf_stretch = 0;
 };
 
@@ -207,8 +206,6 @@ inline void add_face(const Triangle_soup& soup, const Points& x, std::size_t f, 
   const double area = soup.face_area(f);
 
   const double ratio = signed_spherical_area(chord[0], chord[1], chord[2]) / area;
-  if(std::isfinite(ratio))
-    out.min_area_ratio = std::min(out.min_area_ratio, ratio);
   out.log_area_ratio.push_back({std::abs(std::log(ratio)), area});
   out.angle_error.push_back({angle_error(input, chord), area});
 
@@ -246,7 +243,8 @@ inline Distortion_report measure_soup(const Triangle_soup& soup, const Points& x
   report.quasi_conformal = summarize(figures.quasi_conformal);
   report.angle_error = summarize(figures.angle_error);
   report.log_area_ratio = summarize(figures.log_area_ratio);
-  report.min_area_ratio = std::isfinite(figures.min_area_ratio) ? figures.min_area_ratio : 0;
+  const double smallest = min_area_ratio(soup, x);
+  report.min_area_ratio = std::isfinite(smallest) ? smallest : 0;
   if(figures.stretch_weight > 0)
     report.l2_stretch = std::sqrt(figures.stretch_sum / figures.stretch_weight);
   report.linf_stretch = figures.linf_stretch;

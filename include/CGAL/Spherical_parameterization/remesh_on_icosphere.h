@@ -5,7 +5,7 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_REMESH_ON_ICOSPHERE_H
 
 #include <CGAL/Spherical_parameterization/Sphere_point_location.h>
-#include <CGAL/Spherical_parameterization/internal/add_triangles.h>
+#include <CGAL/Spherical_parameterization/internal/sphere/add_triangles.h>
 
 #include <CGAL/assertions.h>
 #include <CGAL/property_map.h>

@@ -5,7 +5,7 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_SURFACE_MAP_H
 
 #include <CGAL/Spherical_parameterization/Sphere_point_location.h>
-#include <CGAL/Spherical_parameterization/internal/indexed_triangles.h>
+#include <CGAL/Spherical_parameterization/internal/input/indexed_triangles.h>
 
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/number_utils.h>

@@ -4,7 +4,7 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_TEXTURE_COORDINATES_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_TEXTURE_COORDINATES_H
 
-#include <CGAL/Spherical_parameterization/internal/indexed_triangles.h>
+#include <CGAL/Spherical_parameterization/internal/input/indexed_triangles.h>
 #include <CGAL/Spherical_parameterization/octahedral_map.h>
 
 #include <CGAL/Named_function_parameters.h>

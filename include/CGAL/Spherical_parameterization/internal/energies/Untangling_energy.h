@@ -1,8 +1,8 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_UNTANGLING_ENERGY_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_UNTANGLING_ENERGY_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ENERGIES_UNTANGLING_ENERGY_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ENERGIES_UNTANGLING_ENERGY_H
 
 #include <CGAL/Spherical_parameterization/Chord_triangle.h>
 #include <CGAL/Spherical_parameterization/Reference_triangle.h>
@@ -60,4 +60,4 @@ struct Signed_stretch_energy
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_UNTANGLING_ENERGY_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ENERGIES_UNTANGLING_ENERGY_H

@@ -1,8 +1,8 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_FOLD_BARRIER_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_FOLD_BARRIER_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ENERGIES_FOLD_BARRIER_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ENERGIES_FOLD_BARRIER_H
 
 #include <CGAL/Spherical_parameterization/Chord_triangle.h>
 #include <CGAL/Spherical_parameterization/Reference_triangle.h>
@@ -21,8 +21,7 @@ namespace internal {
 /// `4 pi`), `det J = det(a, b, c) / (2 InputArea)` its signed area ratio. `t` lies between
 /// `sigma_min^2 / 2` and `sigma_min^2`: for a conformal face it is half the area ratio, and
 /// a needle reaches a small `t` long before its area is small. A barrier on the area alone
-/// was measured to let squeezed protrusions (cow, bull, camel, man) collapse into needles,
-/// with mean quasi-conformal ratios of 30 to 1700.
+/// lets squeezed protrusions collapse into needles, with a very large quasi-conformal ratio.
 /// The barrier is `InputArea * b(t / activation)`, `b(u) = -(1 - u)^2 log(u)` for
 /// `0 < u < 1` (C2 at `u = 1`, the clamped barrier of incremental potential contact, Li et
 /// al. 2020). A model of `SphericalEnergy` with its `activation`; the solver calls the
@@ -38,8 +37,8 @@ struct Fold_barrier
 
   /// The chord determinant the barrier defends on faces of tiny input area, 100 times the
   /// degeneracy threshold of the validity contract (`degenerate_determinant`). The relative
-  /// floor alone let a face of input area share 4e-9 (triceratops, Combined (1, 10)) reach
-  /// `det = 8e-15` at an area ratio of 1e-6.
+  /// floor alone bounds the area ratio, not the determinant: a face of tiny input area can
+  /// then reach a determinant under that threshold.
   static constexpr double determinant_floor = 1e-12;
 
   /// The activation of a face: `floor`, raised where the face's input area is so small that
@@ -52,7 +51,7 @@ struct Fold_barrier
 
   /// The weight of a face's barrier: its input area, but not less than the area below which
   /// `face_activation()` is raised. Weighted by its own tiny area, the barrier of such a face
-  /// is too weak to hold it (the case above ended at `u = 1e-2` of its activation and below).
+  /// is too weak to hold it: the face sinks far under its activation.
   static double face_weight(const Jacobian_face_data& d, double floor)
   {
     return std::max(d.input_area, determinant_floor * 0.25 / floor);
@@ -87,8 +86,8 @@ struct Fold_barrier
   /// curvature at its activation, so the Newton model does not see a face coming down to it
   /// until it is there; steps that would fold faces above it are capped instead, to a few
   /// percent of Newton's in the squeezed protrusions. The weak layer lets the model see them
-  /// one step earlier without changing the minimum much (see the fold-free continuation in
-  /// `Spherical_parameterizer_3`).
+  /// one step earlier without changing the minimum much (see
+  /// `Robust_pipeline::continuation_stage()`).
   /// With `floored_activation`, a face whose input area is under its area floor is measured
   /// as a face of the floor's area, and held from `floored_activation` on: see
   /// `Newton_options::floored_activation`.
@@ -133,4 +132,4 @@ private:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_FOLD_BARRIER_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ENERGIES_FOLD_BARRIER_H

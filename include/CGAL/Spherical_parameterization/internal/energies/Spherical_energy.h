@@ -1,14 +1,14 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERICAL_ENERGY_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERICAL_ENERGY_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ENERGIES_SPHERICAL_ENERGY_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ENERGIES_SPHERICAL_ENERGY_H
 
 #include <CGAL/Spherical_parameterization/Chord_triangle.h>
 #include <CGAL/Spherical_parameterization/Reference_triangle.h>
 #include <CGAL/Spherical_parameterization/d_min_correction.h>
-#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
-#include <CGAL/Spherical_parameterization/internal/parallel_for.h>
+#include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/backends/parallel_for.h>
 
 #include <cmath>
 #include <limits>
@@ -40,7 +40,8 @@ class Spherical_energy
 {
 public:
   /// With `CGAL::Parallel_tag`, the per-face constants are computed in parallel where the
-  /// policy's `Face_data` is default constructible (0.2 s on one core at 302k faces).
+  /// policy's `Face_data` is default constructible: on a large mesh they take a noticeable time
+  /// on one core.
   template <class ConcurrencyTag = CGAL::Sequential_tag>
   Spherical_energy(const Triangle_soup& soup, const Energy& energy, bool d_min_correction = true,
                    ConcurrencyTag = ConcurrencyTag())
@@ -94,4 +95,4 @@ private:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERICAL_ENERGY_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ENERGIES_SPHERICAL_ENERGY_H

@@ -1,10 +1,10 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_BOOST_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_BOOST_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_MOBIUS_BOOST_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_MOBIUS_BOOST_H
 
-#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -28,8 +28,8 @@ inline Eigen::Vector3d mobius_boost(const Eigen::Vector3d& b, const Eigen::Vecto
 /// After a full boost `step` of energy `e` was accepted (the map in `y`, written by
 /// `boosted`): the step doubled while that lowers the energy, at most 4 times and up to a
 /// boost of norm 0.9. Returns the energy of the map left in `y`. The energies slide along the
-/// boosts much farther than the Newton step of their finite differences goes (bunny00,
-/// Dirichlet: 47 -> 31 iterations, the same minimum).
+/// boosts much farther than the Newton step of their finite differences goes, so doubling
+/// saves iterations and reaches the same minimum.
 template <class Boosted>
 double extend_boost(Eigen::Vector3d step, double e, const Boosted& boosted, Points& y)
 {
@@ -52,9 +52,8 @@ double extend_boost(Eigen::Vector3d step, double e, const Boosted& boosted, Poin
 /// admissible). The conformal energies (Dirichlet, and Tutte and MIPS nearly so) are almost
 /// invariant under these transformations: only the `d_min` factor and the discretization pin
 /// the map down, so the energy is very flat along them, and Newton's method in the vertex
-/// variables, damped by its shift, was measured to slide along them over 100 iterations
-/// and more (Dirichlet on bunny00: a boost of 0.29 between the 100th and the 200th
-/// iteration, all else still). Derivatives by finite differences: 9 energy evaluations.
+/// variables, damped by its shift, slides along them over a hundred iterations and more,
+/// all else still. Derivatives by finite differences: 9 energy evaluations.
 /// Returns true if the map moved; `current`, the energy of `x`, then follows it.
 template <class EnergyFunction>
 bool boost_step(Points& x, const EnergyFunction& energy, double& current)
@@ -102,4 +101,4 @@ bool boost_step(Points& x, const EnergyFunction& energy, double& current)
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_BOOST_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_MOBIUS_BOOST_H

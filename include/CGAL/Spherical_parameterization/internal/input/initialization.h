@@ -1,11 +1,11 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INITIALIZATION_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INITIALIZATION_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INPUT_INITIALIZATION_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INPUT_INITIALIZATION_H
 
-#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
-#include <CGAL/Spherical_parameterization/internal/map_validity.h>
+#include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/validity/map_validity.h>
 
 #include <cmath>
 #include <optional>
@@ -36,10 +36,7 @@ inline double winding_number(const Triangle_soup& soup, const Eigen::Vector3d& c
   const auto x = central_projection(soup.points, center);
   if(!x)
     return 0;
-  double area = 0;
-  for(const auto& t : soup.faces)
-    area += signed_spherical_area((*x)[t[0]], (*x)[t[1]], (*x)[t[2]]);
-  return area / (4 * M_PI);
+  return degree(soup.faces, *x);
 }
 
 /// A centre inside the volume for the central projection: the area centroid (the paper's
@@ -85,4 +82,4 @@ inline std::optional<Eigen::Vector3d> interior_center(const Triangle_soup& soup)
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INITIALIZATION_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INPUT_INITIALIZATION_H

@@ -1,8 +1,8 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TRIANGLE_SOUP_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TRIANGLE_SOUP_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INPUT_TRIANGLE_SOUP_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INPUT_TRIANGLE_SOUP_H
 
 #include <CGAL/Spherical_parameterization/Reference_triangle.h>
 
@@ -57,22 +57,21 @@ constexpr double minimum_relative_height = 0.02;
 /// plus the smallest length that gives it that height: Sharp and Crane's intrinsic
 /// mollification (2020), per face. Nearly degenerate input faces (needles by near-duplicate
 /// vertices, slivers) otherwise give the area and MIPS terms weights of 1e10 and more, against
-/// which no valid map was found (cow with 50 needles: 4 degenerate faces left, energy 8070;
-/// with the minimum height, valid, 54.26 against the clean cow's 54.24).
+/// which the solver finds no valid map; with the minimum height, the map is valid at about the
+/// energy of the mesh without them.
 /// - Per face, not one length added to every edge of the mesh as they do: the energies sum
 ///   terms of each face with its own reference triangle, so lengths need not agree between
 ///   faces, and small fair faces of a graded mesh stay as they are.
-/// - A minimum height, not their minimum margin in the triangle inequalities: a margin of
-///   1e-3 gave slivers a height of 2.2% but needles 0.1%, whose tiny area still raised their
-///   barrier's activation (`Fold_barrier::face_activation()`) and pushed protrusions open
-///   (man with 100 needles after one Loop subdivision: not converged, 125 s; now 43 s, at
-///   the clean mesh's energy).
+/// - A minimum height, not their minimum margin in the triangle inequalities: a margin leaves
+///   needles far lower than slivers, and their tiny area still raises their barrier's
+///   activation (`Fold_barrier::face_activation()`) and pushes protrusions open, so that the
+///   solve is slow to converge or does not.
 /// Faces with that height keep their exact shape.
 inline Reference_triangle mollified_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r)
 {
   // The test on the face's own area and squared lengths, no more square roots for the fair
-  // faces, nearly all, built at every stage (random triangles: 76 ns each, against 72 for the
-  // plain triangle and 93 with Heron's formula first).
+  // faces, nearly all, built at every stage: they cost about what the plain triangle costs,
+  // less than Heron's formula first.
   Reference_triangle own(p, q, r);
   const double longest_squared = std::max({(q - r).squaredNorm(), (r - p).squaredNorm(), (p - q).squaredNorm()});
   if(2 * own.area >= minimum_relative_height * longest_squared)
@@ -132,10 +131,10 @@ struct Triangle_soup
   /// largest local scale at its vertices. Isosurfaces (marching cubes or tetrahedra) have a
   /// cluster of near-coincident vertices wherever the surface passes close to a grid point:
   /// faces of 1e-6 to 1e-13 of the mean area among needles, which the mollification makes fat.
-  /// Those needles want the cluster's image opened, the area energy wanted the tiny faces'
-  /// images tiny, and Combined found no valid map on 5 of 6 such meshes (doc/NOTES.md, session
-  /// 41). The local scale is the mean edge at a vertex, not the longest: a small fair face
-  /// next to a long edge keeps its area (CGAL's meshes: 23 faces floored, 14 of them on bull).
+  /// Those needles want the cluster's image opened, the area energy without a floor wants the
+  /// tiny faces' images tiny, and Combined then finds no valid map on most such meshes (see
+  /// doc/DESIGN.md). The local scale is the mean edge at a vertex, not the longest: a small fair
+  /// face next to a long edge keeps its area, and ordinary meshes have few faces floored.
   double area_floor(std::size_t f) const
   {
     if(vertex_scales.empty())
@@ -151,8 +150,8 @@ struct Triangle_soup
 /// The local scale of each vertex: the mean length of its edges (each edge counted once per
 /// face), raised to at least half of each neighbour's scale. The vertices inside a cluster of
 /// near-coincident vertices have only tiny edges; from the cluster's rim inwards their scale
-/// then halves at each edge instead of falling to the tiny edges' length (a sphere through
-/// 84 grid points: faces of 1e-14 inside clusters kept their area targets, no valid map).
+/// then halves at each edge instead of falling to the tiny edges' length, which would leave
+/// the faces inside clusters their tiny area targets and no valid map.
 inline std::vector<double> local_scales(const Points& points, const Faces& faces)
 {
   std::vector<double> scale(points.size(), 0.0);
@@ -251,4 +250,4 @@ inline Triangle_soup make_triangle_soup(Points points, Faces faces)
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TRIANGLE_SOUP_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INPUT_TRIANGLE_SOUP_H

@@ -1,14 +1,15 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_COARSE_TO_FINE_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_COARSE_TO_FINE_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_HIERARCHY_COARSE_TO_FINE_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_HIERARCHY_COARSE_TO_FINE_H
 
-#include <CGAL/Spherical_parameterization/internal/Progressive_mesh.h>
-#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
-#include <CGAL/Spherical_parameterization/internal/kernel_placement.h>
-#include <CGAL/Spherical_parameterization/internal/map_validity.h>
-#include <CGAL/Spherical_parameterization/internal/parallel_for.h>
+#include <CGAL/Spherical_parameterization/internal/hierarchy/Level.h>
+#include <CGAL/Spherical_parameterization/internal/hierarchy/Progressive_mesh.h>
+#include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/hierarchy/kernel_placement.h>
+#include <CGAL/Spherical_parameterization/internal/validity/map_validity.h>
+#include <CGAL/Spherical_parameterization/internal/backends/parallel_for.h>
 
 #include <Eigen/Cholesky>
 
@@ -20,34 +21,6 @@
 namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
-
-/// A mesh the solver runs on: the input, or a level of its progressive mesh, with its own
-/// Newton solver (sparsity pattern and symbolic factorization).
-template <class Newton>
-struct Level
-{
-  Triangle_soup soup;
-  std::vector<int> to_input;  ///< the input vertex of each level vertex; empty for the input itself
-  std::unique_ptr<Newton> solver;
-
-  std::size_t number_of_vertices() const { return soup.number_of_vertices(); }
-  bool has_fold(const Points& x) const { return count_bad_faces(soup.faces, x) > 0; }
-
-  /// The level's points of the input-indexed map `x`.
-  void gather(const Points& x, Points& level_x) const
-  {
-    level_x.resize(to_input.size());
-    for(std::size_t i = 0; i < to_input.size(); ++i)
-      level_x[i] = x[to_input[i]];
-  }
-
-  /// Writes the level's points back into the input-indexed map `x`.
-  void scatter(const Points& level_x, Points& x) const
-  {
-    for(std::size_t i = 0; i < to_input.size(); ++i)
-      x[to_input[i]] = level_x[i];
-  }
-};
 
 /// The rings of a sequence of vertex splits, in their order: the linear prolongation that
 /// moves each split vertex with the mean of its ring (`spread()`), and its transpose.
@@ -100,8 +73,8 @@ private:
 /// rotations (`w x p`) and the Moebius boosts (`b - (b . p) p`) of the whole map. Every
 /// energy is invariant under rotations and the conformal ones nearly so under boosts, so a
 /// converged level's factor is nearly singular along them and its solve blows up whatever
-/// part of the right-hand side lies there (a bumpy sphere's input, Dirichlet: a step of norm
-/// 6500); the Moebius boost step of every iteration handles them instead.
+/// part of the right-hand side lies there into a huge step; the Moebius boost step of every
+/// iteration handles them instead.
 inline void remove_global_modes(const Points& x, std::vector<Eigen::Vector3d>& step)
 {
   using Fields = Eigen::Matrix<double, 3, 6>;  // the six fields at a point, as columns
@@ -131,8 +104,7 @@ inline void remove_global_modes(const Points& x, std::vector<Eigen::Vector3d>& s
 /// ring (`mean_value_point()`), moved into the kernel of its fan when that point is not well
 /// inside (`place_in_kernel()`), so that a fold-free map of a level stays fold-free. With
 /// `CGAL::Parallel_tag` the splits of one pass of the progressive mesh are placed in
-/// parallel, to the same points (bunny00 after one subdivision: 2.77 -> 2.60 s, the splits
-/// into its input 0.17 s before; after two, 16.1 -> 15.5 s).
+/// parallel, to the same points: the placements read only their rings' points.
 template <class Newton, class ConcurrencyTag = CGAL::Sequential_tag>
 class Coarse_to_fine
 {
@@ -182,17 +154,14 @@ public:
         removed_[k] = split.removed;
         refinement_.fan(split, fans_[k]);
       }
-      inside_.resize(batch);
+      // A fan with an empty kernel leaves a fold, which the level's robust stages untangle.
       parallel_for<ConcurrencyTag>(batch, [&](std::size_t k) {
         const int u = removed_[k];
         x[u] = place_in_kernel(x, fans_[k], mean_value_point(u, input_->points, x, fans_[k]));
-        inside_[k] = fan_clearance(x[u], x, fans_[k]) > 0;
       });
-      for(std::size_t k = 0; k < batch; ++k) {
-        empty_kernels_ += !inside_[k];
-        if(for_two_grid)
+      if(for_two_grid)
+        for(std::size_t k = 0; k < batch; ++k)
           split_rings_.add(removed_[k], fans_[k]);
-      }
     }
     ++next_size_;
     // The last level before the input, with its last factorization, serves the input's
@@ -246,8 +215,6 @@ public:
   /// The rings of the splits from the last level to the input, once they are made.
   const Split_rings& split_rings() const { return split_rings_; }
 
-  /// The splits whose fan had no kernel: the map has a fold there, to untangle.
-  std::size_t empty_kernels() const { return empty_kernels_; }
 
 private:
   void make_level()
@@ -266,12 +233,10 @@ private:
   Split_rings split_rings_;  // of the splits from the last level to the input
   std::vector<Fan> fans_;    // of a batch of independent splits, see refine()
   std::vector<int> removed_;
-  std::vector<char> inside_;
-  std::size_t empty_kernels_ = 0;
 };
 
 } // namespace internal
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_COARSE_TO_FINE_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_HIERARCHY_COARSE_TO_FINE_H

@@ -1,8 +1,8 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_PARALLEL_FOR_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_PARALLEL_FOR_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_BACKENDS_PARALLEL_FOR_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_BACKENDS_PARALLEL_FOR_H
 
 #include <CGAL/tags.h>
 
@@ -55,7 +55,7 @@ void parallel_for(std::size_t n, const Fn& fn)
 ///
 /// The task goes to an arena of its own, not to the caller's: a thread waiting in one of the
 /// caller's parallel loops takes tasks of its arena only, so it never takes up this task
-/// (seconds of work at 300k faces) while the loop's other threads are done and wait.
+/// (seconds of work on a large mesh) while the loop's other threads are done and wait.
 template <class ConcurrencyTag>
 class Background_task
 {
@@ -111,4 +111,4 @@ private:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_PARALLEL_FOR_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_BACKENDS_PARALLEL_FOR_H

@@ -1,8 +1,8 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INDEXED_TRIANGLES_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INDEXED_TRIANGLES_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INPUT_INDEXED_TRIANGLES_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INPUT_INDEXED_TRIANGLES_H
 
 #include <CGAL/assertions.h>
 #include <CGAL/boost/graph/iterator.h>
@@ -67,4 +67,4 @@ Indexed_triangles<TriangleMesh> indexed_triangles(const TriangleMesh& tm)
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INDEXED_TRIANGLES_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INPUT_INDEXED_TRIANGLES_H

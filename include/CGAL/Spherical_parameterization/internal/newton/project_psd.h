@@ -1,10 +1,10 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_PROJECT_PSD_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_PROJECT_PSD_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_PROJECT_PSD_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_PROJECT_PSD_H
 
-#include <CGAL/Spherical_parameterization/internal/Symmetric_eigen.h>
+#include <CGAL/Spherical_parameterization/internal/newton/Symmetric_eigen.h>
 
 #include <Eigen/Core>
 
@@ -14,12 +14,11 @@ namespace internal {
 
 /// Makes the symmetric matrix `h` positive semi-definite by replacing its eigenvalues with
 /// their absolute values (rather than clamping negative ones to 0: a clamped direction has
-/// no curvature left and draws huge steps that the fold-free step cap then cuts to 1e-3;
-/// measured on cow, Combined(1, 1): 154 target iterations with clamping, 114 with |lambda|).
-/// A matrix without negative eigenvalue is left as it is. No Cholesky test first: the face
-/// Hessians sent here have the near-null directions of the rotations of their three
-/// points, and it failed on all but 1 in 3000 of them (man@loop1, Combined). A matrix
-/// with a non-finite entry becomes 0.
+/// no curvature left and draws huge steps that the fold-free step cap then cuts to 1e-3,
+/// which costs iterations). A matrix without negative eigenvalue is left as it is. No
+/// Cholesky test first: the face Hessians sent here have the near-null directions of the
+/// rotations of their three points, so the test fails on nearly all of them. A matrix with a
+/// non-finite entry becomes 0.
 template <int N>
 void project_to_psd(Eigen::Matrix<double, N, N>& h)
 {
@@ -37,4 +36,4 @@ void project_to_psd(Eigen::Matrix<double, N, N>& h)
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_PROJECT_PSD_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_PROJECT_PSD_H

@@ -1,10 +1,10 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_FLOOR_PATCH_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_FLOOR_PATCH_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_PIPELINE_FLOOR_PATCH_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_PIPELINE_FLOOR_PATCH_H
 
-#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
 
 #include <array>
 #include <vector>
@@ -104,4 +104,4 @@ inline Floor_patch make_floor_patch(const Triangle_soup& soup, const std::vector
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_FLOOR_PATCH_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_PIPELINE_FLOOR_PATCH_H

@@ -1,20 +1,21 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_SOLVER_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_SOLVER_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_NEWTON_SOLVER_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_NEWTON_SOLVER_H
 
 #include <CGAL/Spherical_parameterization/Progress.h>
 #include <CGAL/Spherical_parameterization/Triangle_jet.h>
-#include <CGAL/Spherical_parameterization/internal/Fold_barrier.h>
-#include <CGAL/Spherical_parameterization/internal/Spherical_energy.h>
-#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
-#include <CGAL/Spherical_parameterization/internal/map_validity.h>
-#include <CGAL/Spherical_parameterization/internal/mobius_boost.h>
-#include <CGAL/Spherical_parameterization/internal/parallel_for.h>
-#include <CGAL/Spherical_parameterization/internal/project_psd.h>
-#include <CGAL/Spherical_parameterization/internal/step_bound.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_basis.h>
+#include <CGAL/Spherical_parameterization/internal/energies/Fold_barrier.h>
+#include <CGAL/Spherical_parameterization/internal/newton/Newton_options.h>
+#include <CGAL/Spherical_parameterization/internal/energies/Spherical_energy.h>
+#include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/validity/map_validity.h>
+#include <CGAL/Spherical_parameterization/internal/newton/mobius_boost.h>
+#include <CGAL/Spherical_parameterization/internal/backends/parallel_for.h>
+#include <CGAL/Spherical_parameterization/internal/newton/project_psd.h>
+#include <CGAL/Spherical_parameterization/internal/newton/step_bound.h>
+#include <CGAL/Spherical_parameterization/internal/newton/tangent_basis.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCore>
@@ -33,7 +34,6 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-using Clock = std::chrono::steady_clock;
 
 /// True if the solver traits `T` have the optional `allocate_factor()`.
 template <class T, class = void>
@@ -45,107 +45,16 @@ struct has_allocate_factor<T, std::void_t<decltype(std::declval<T&>().allocate_f
 {
 };
 
-/// A step of a map from a coarser level: given the map and the energy's gradient at every
-/// vertex (in its tangent plane), writes a displacement of every vertex that lowers the
-/// energy's smooth error, or returns false (see `Coarse_to_fine`).
-using Coarse_correction = std::function<bool(const Points& x, const std::vector<Eigen::Vector3d>& gradient,
-                                             std::vector<Eigen::Vector3d>& step)>;
-
-struct Newton_options
-{
-  std::size_t max_iterations = 200;
-  double tolerance = 1e-6;  ///< on the relative predicted and actual decrease of the energy
-  /// Energy of the faces outside the soup, held fixed, that counts in the total the
-  /// tolerance is relative to: a patch of a map then stops where the whole map would.
-  double held_energy = 0;
-  Clock::time_point start = Clock::now();
-  Clock::time_point deadline = Clock::time_point::max();
-  /// Keep the map fold-free: cap every step before a chord determinant reaches 0, and add
-  /// a `Fold_barrier` to the energy of the faces that need one (see `Newton_solver`).
-  bool keep_fold_free = false;
-  /// The barrier's activation under which every face is held (`Fold_barrier::scale`,
-  /// about half the area ratio): the floor of the map's area distortion.
-  double fold_floor = 1e-7;
-  /// With `keep_fold_free`: the weight of the barrier's weak outer layer (`Fold_barrier::energy()`).
-  double outer_barrier_weight = 0;
-  /// With `keep_fold_free`, if positive: the barrier measures a face whose input area is under
-  /// its `Reference_triangle::area_floor` (the near-duplicate vertices of isosurfaces) as a
-  /// face of the floor's area, and holds it from this activation on. Measured by its own tiny
-  /// area, such a face is held only at a determinant of 1e-12, so the Newton steps, which
-  /// nothing else keeps from flipping it, squeeze it about 5 times each on the way there,
-  /// each capped to a few percent (see `Spherical_parameterizer_3`'s continuation).
-  double floored_activation = 0;
-  bool stop_when_fold_free = false;  ///< a start-up stage: stop at the first fold-free map
-  /// When set, receives the last iterate (or the start) on which every face is positively
-  /// oriented: where a fold-free stage can take over after a stage that may fold.
-  Points* fold_free_iterate = nullptr;
-  /// With `fold_free_iterate`: stop (`Newton_stop::FOLDED`) after this many folded iterates
-  /// in a row, a fold that the energy does not undo by itself.
-  std::size_t max_folded_iterations = 5;
-  /// With `fold_free_iterate`: whether a folded iterate with at most half the folded faces of
-  /// the iterate before counts against `max_folded_iterations` (false: the energy is undoing
-  /// the fold by itself).
-  bool count_unfolding_iterates = true;
-  bool projected_hessian = false;  ///< project each face's Hessian to PSD instead of shifting the exact one
-  /// Iterations that solve only the 2x2 diagonal blocks of the Hessian (block Jacobi) before
-  /// Newton: a cheap smoother of the local error a vertex split leaves.
-  std::size_t smoothing_iterations = 0;
-  /// The exact Hessian's first shift in the solver's life, relative to its mean diagonal.
-  /// 1e-4 by default: starts are far from a minimum, and growing from the floor cost 7
-  /// failed factorizations on bear.
-  double first_shift = 1e-4;
-  /// With `smoothing_iterations`: the first smoothing step is a two-grid cycle, this coarse
-  /// correction of the map followed by block Jacobi (`Newton_solver::smoothing_direction()`).
-  const Coarse_correction* coarse_correction = nullptr;
-  /// Before every Newton iteration, a Newton step on the three parameters of a Moebius
-  /// boost of the whole map (`boost_step()`), the directions in which the energies of
-  /// conformal type are nearly flat.
-  bool boost_search = false;
-  /// Stop when the next decrement, predicted from the last two, is far below the tolerance
-  /// (`predicted_decrement()`): saves the last factorization, the one that would only confirm
-  /// convergence. Set on the input level only: on the coarser levels, whose maps are starts
-  /// for the next, stopping one iteration earlier changed the next level's path (Tutte on
-  /// bunny00: 42 -> 53 iterations), for no gain.
-  bool predict_convergence = false;
-  /// With `fold_free_iterate`: stop (`Newton_stop::UNDER_FLOOR`) at a fold-free iterate with a
-  /// face under `fold_floor` once the next decrement is predicted below the tolerance. The
-  /// floor stage that follows then starts one factorization earlier: confirming the
-  /// convergence of an energy that is about to change is wasted (6 s at 1.2M faces).
-  bool leave_under_floor = false;
-  /// With `keep_fold_free`: also stop at the slow end of a stage whose steps the fold-free cap
-  /// shortens (`slow_capped_tail()`). There every step is capped at 1 to 5% of Newton's by
-  /// faces the barrier does not hold yet, and gains little against the tolerance: on man
-  /// (35k faces), the input's last 9 to 29 iterations gained 1e-6 to 5e-6 of the energy in
-  /// all. Set on the input's last stage only: an earlier stop anywhere else changes the path
-  /// of the stages that follow.
-  bool stop_slow_capped_tail = false;
-  const char* stage = "";
-  std::size_t iteration_offset = 0;  ///< iterations of earlier stages, for progress reports
-};
-
-enum class Newton_stop { CONVERGED, ITERATION_CAP, STALLED, CANCELLED, TIME_LIMIT, NON_FINITE_START, FOLDED, UNDER_FLOOR };
-
-struct Newton_outcome
-{
-  Newton_stop stop = Newton_stop::CONVERGED;
-  std::size_t iterations = 0;
-  double energy = 0;
-};
-
 /// Newton's method on the product of unit spheres, one 2D tangent chart per vertex,
 /// re-centred at every iteration (the retraction is the central projection):
 /// - the exact Hessian in the tangent charts: each face's 9x9 ambient Hessian pulled to its
-///   6 tangent variables, plus the sphere-curvature term `-<g_v, x_v> I_2` of each vertex;
-/// - a diagonal shift `mu` (Levenberg-Marquardt): grown x8 until the factorization is
-///   positive definite, shrunk after every iteration (/16 after a full step, /4 after a
-///   shorter one, /2 after one whose shift had to grow), never below 1e-9 x the mean
-///   diagonal, which also absorbs the three rotation modes, so no vertex is fixed.
-///   Where the shift would exceed 1e-3 x the mean diagonal, the iteration uses the per-face
-///   Hessians made positive definite instead (`project_to_psd`), and the exact one is
-///   skipped for the next 4 iterations, its shift held near that largest value. Projection
-///   alone was measured 18x slower for Tutte on triceratops (200 against 11 iterations): it
-///   hides the negative curvature of the near-Moebius modes along which the mesh slides;
-/// - an Armijo line search rejects non-finite energies (the d_min barrier).
+///   6 tangent variables, plus the sphere-curvature term `-<g_v, x_v> I_2` of each vertex.
+///   Projecting it to PSD instead hides the negative curvature of the near-Moebius modes
+///   along which a map slides, and costs an order of magnitude more iterations;
+/// - a diagonal shift `mu` (Levenberg-Marquardt), grown until the factorization is positive
+///   definite and relaxed after every iteration; where it would grow too large, the per-face
+///   Hessians made positive definite for a few iterations (`project_to_psd`);
+/// - an Armijo line search that rejects non-finite energies (the d_min barrier).
 /// The sparsity pattern and its symbolic analysis depend on the mesh only and are reused.
 /// The unknowns are the first `free_vertices` vertices of the soup, by default all of them;
 /// the others are held where they are (a patch of a larger map, see `Floor_patch`).
@@ -157,6 +66,41 @@ class Newton_solver
   using Basis = Eigen::Matrix<double, 3, 2>;
   using Face_hessian = Eigen::Matrix<double, 6, 6>;
   static constexpr int lower_entries = 21;  // of a symmetric 6x6 matrix
+
+  // Fold-free steps stop at this share of the first root of a face's determinant: closer
+  // leaves faces nearly degenerate for the next step, farther shortens every capped step.
+  static constexpr double step_cap_share = 0.8;
+  // Armijo's sufficient decrease, and the halvings the line search tries.
+  static constexpr double armijo = 1e-4;
+  static constexpr int max_halvings = 50;
+  // The exact Hessian takes shifts up to this share of its mean diagonal; beyond, the per-face
+  // projected Hessian, and the exact one pauses for a few iterations (a failed attempt costs
+  // an assembly and factorizations).
+  static constexpr double max_exact_shift = 1e-3;
+  static constexpr int exact_pause_iterations = 4;
+  // The shifts never go under this share of the mean diagonal, which also absorbs the three
+  // rotations, so no vertex is fixed; they grow by `shift_growth` per failed factorization.
+  static constexpr double min_shift = 1e-9;
+  static constexpr double shift_growth = 8;
+  // A direction of descent with no decrease at all: the shifts grow by this and the iteration
+  // is retried, while the projected shift is under `max_retry_shift` times its floor.
+  static constexpr double retry_shift_growth = 64;
+  static constexpr double max_retry_shift = 1e6;
+  // Relaxation of the shifts after an iteration: a full step says the model holds (fast
+  // quadratic tails); one whose shift had to grow is then at most 8 times one that failed.
+  static constexpr double relax_after_full_step = 16;
+  static constexpr double relax_after_short_step = 4;
+  static constexpr double relax_after_growth = 2;
+  // A full step whose decrease is within this share of its model's (half the decrement).
+  static constexpr double model_agreement = 0.1;
+  // Stops: a model-matching full step with a decrement under this many thresholds (the next
+  // one is quadratically smaller); a predicted decrement under this share of the threshold
+  // (the prediction errs by up to 20 times); a decrease under this share of it; less than
+  // the threshold gained over the last `stall_window` iterations.
+  static constexpr double quadratic_tail_margin = 10;
+  static constexpr double predicted_margin = 1e-2;
+  static constexpr double negligible_decrease = 1e-2;
+  static constexpr std::size_t stall_window = 10;
 
 public:
   explicit Newton_solver(const Triangle_soup& soup, std::size_t free_vertices = std::numeric_limits<std::size_t>::max())
@@ -209,7 +153,7 @@ public:
       bool two_grid = false;
       if(smoothing)
         two_grid = smoothing_direction(energy, x, out.iterations == 0 ? options.coarse_correction : nullptr, d);
-      else if(!newton_direction(energy, x, options.projected_hessian, d)) { out.stop = Newton_stop::STALLED; break; }
+      else if(!newton_direction(energy, x, d)) { out.stop = Newton_stop::STALLED; break; }
 
       double decrement = -gradient_.dot(d);
       double threshold = options.tolerance * std::abs(e + options.held_energy);
@@ -218,7 +162,7 @@ public:
       double alpha = 1;
       auto fold_free_cap = [&] {
         if(options.keep_fold_free)
-          alpha = std::min(1.0, 0.8 * largest_fold_free_step(*faces_, x, ambient_step(d)));
+          alpha = std::min(1.0, step_cap_share * largest_fold_free_step(*faces_, x, ambient_step(d)));
       };
       fold_free_cap();
       bool capped = alpha < 1;
@@ -226,7 +170,7 @@ public:
       if(two_grid && alpha < 1) {
         // The line search had to shorten the two-grid step: the last level's Hessian does
         // not model the input's energy here (a level that ended on its fold barrier, as
-        // Dirichlet's squeezed ears do at 302k faces: a step of 1/32). Block Jacobi alone.
+        // squeezed protrusions do). Block Jacobi alone.
         block_jacobi(-gradient_, d);
         decrement = -gradient_.dot(d);
         alpha = 1;
@@ -237,7 +181,12 @@ public:
       if(!(e_new < e)) {
         // No decrease along a direction of descent: precision is exhausted, or the
         // shift is too small for this non-convex stretch. Grow it once before giving up.
-        if(mu_projected_ < 1e6 * mu_floor_) { mu_exact_ *= 64; mu_projected_ *= 64; ++out.iterations; continue; }
+        if(mu_projected_ < max_retry_shift * mu_floor_) {
+          mu_exact_ *= retry_shift_growth;
+          mu_projected_ *= retry_shift_growth;
+          ++out.iterations;
+          continue;
+        }
         out.stop = Newton_stop::STALLED;
         break;
       }
@@ -275,19 +224,19 @@ public:
       history.push_back(e);
       // A full Newton step that decreased the energy as its model predicted, with a decrement
       // close to the tolerance, or one whose successor, predicted from the last two decrements,
-      // is far below it (margin 100; the prediction was measured off by up to 20x): the next
-      // decrement is quadratically smaller, no need to factor again to see it.
-      const bool model_held = !smoothing && alpha == 1 && std::abs(decrease - decrement / 2) <= 0.1 * decrement;
+      // is far below it: the next decrement is quadratically smaller, no need to factor again
+      // to see it.
+      const bool model_held = !smoothing && alpha == 1 && std::abs(decrease - decrement / 2) <= model_agreement * decrement;
       const double predicted = predicted_decrement(last_full_decrement, decrement);
       last_full_decrement = model_held ? decrement : 0;
       const bool quadratic_tail =
-        model_held && (decrement <= 10 * threshold ||
-                       (options.predict_convergence && predicted <= 1e-2 * threshold));
+        model_held && (decrement <= quadratic_tail_margin * threshold ||
+                       (options.predict_convergence && predicted <= predicted_margin * threshold));
       if(quadratic_tail && options.predict_convergence && boost_gain(energy, x, e) > threshold) {
         out.energy = e;
         continue;
       }
-      if(quadratic_tail || decrease <= threshold * 1e-2 || stalled(history, threshold) ||
+      if(quadratic_tail || decrease <= negligible_decrease * threshold || stalled(history, threshold) ||
          (options.stop_slow_capped_tail && slow_capped_tail(history, capped_steps, threshold))) {
         out.stop = Newton_stop::CONVERGED;
         break;
@@ -316,8 +265,8 @@ public:
   const std::vector<Basis>& bases() const { return bases_; }
 
   /// Frees the matrix and the per-face buffers, keeping the last factor and `bases()`: after
-  /// this the solver can only `solve_with_last_factor()`. At 1.2M faces the level kept for
-  /// the input's two-grid cycle (243k faces) otherwise holds them until the input's first step.
+  /// this the solver can only `solve_with_last_factor()`. The level kept for the input's
+  /// two-grid cycle would otherwise hold them until the input's first step.
   void keep_only_last_factor()
   {
     Matrix empty;
@@ -334,10 +283,9 @@ public:
 
   /// Allocates the buffers of the first assembly and the factor (the solver traits'
   /// `allocate_factor()`, if they have it) and writes them once. Fresh memory is slow on
-  /// virtual machines (a page fault in the host per page): at 302k faces the first
-  /// assembly and factorization took 0.5 and 1.45 s, the next ones 0.2 and 0.6 s. The
-  /// coarse-to-fine solve calls this on another thread while it works on the coarser
-  /// levels, when nothing else uses this solver.
+  /// virtual machines (a page fault in the host per page), so the coarse-to-fine solve calls
+  /// this on another thread while it works on the coarser levels, when nothing else uses
+  /// this solver.
   void prepare_memory()
   {
     const std::size_t nf = faces_->size();
@@ -352,9 +300,8 @@ public:
 
   /// True if every face is at or above `floor` on the scale of `Fold_barrier` and has a
   /// determinant above `min_determinant`. The default margin is 10 times the degeneracy
-  /// threshold, not the barrier's `determinant_floor`: raising the bar to that made the input
-  /// level of bunny00 after one subdivision (many small faces, none near the threshold)
-  /// restart in fold-free mode, 4 -> 11 iterations.
+  /// threshold, not the barrier's `determinant_floor`: large inputs have many small faces,
+  /// none near the threshold, that the higher bar would send to the fold-free stages.
   bool is_above_floor(const Points& x, double floor, double min_determinant = 10 * degenerate_determinant)
   {
     face_value_.resize(faces_->size());
@@ -394,16 +341,11 @@ public:
     return capped_steps >= capped_tail_window &&
            recent_gain(history, capped_tail_window) <= capped_tail_gain * capped_tail_window * threshold;
   }
-  // Half the threshold rather than a quarter: the slides this stops gain 1.5 to 4 times the
-  // threshold per iteration for dozens of iterations on some rotations of an input and not on
-  // others (rounding alone decides). 8 cases x 3 rotations of the input (camel Dirichlet,
-  // armadillo and diplodocus Tutte, man@loop1 and bull@loop2 Combined, bunny00): 132.5 ->
-  // 122.7 s, the energies at most 5.7e-6 of themselves higher. The full threshold: 114.0 s,
-  // but up to 2.7e-5 higher, over the 1e-5 that test_parameterizer holds a map to.
+  // Half the threshold: the slides this stops gain a few thresholds per iteration for dozens
+  // of iterations, depending on rounding alone; the whole threshold leaves energies higher
+  // than a converged map's by more than the tests allow.
   static constexpr double capped_tail_gain = 0.5;
-  // 3 rather than 5 iterations: at the held-out size (man@loop1, dino@loop2, bull@loop2,
-  // cow@loop2, diplodocus@loop1, medians of 3) the same energies, 2 iterations fewer on 5
-  // of 6 meshes, about 4% of the time; the corpus (14 meshes x 3 energies) the same energies.
+  // Three iterations: as good a stop as five, two iterations sooner.
   static constexpr std::size_t capped_tail_window = 3;
 
 private:
@@ -416,20 +358,14 @@ private:
     return Fold_barrier::scale(chord, det, barrier_data_[f]);
   }
 
-  // After an iteration, the shifts are relaxed towards their floor:
-  // - /16 after a full step, which says the model holds (rather than /4: the tail became
-  //   quadratic on bunny00 after one subdivision, 3 Newton steps instead of 6), else /4;
-  // - /2 if the shift had to grow in this iteration: it is then at most 8 times one that
-  //   failed, and a failure costs a whole factorization (the negative modes are global,
-  //   found in the last supernode);
-  // - the exact shift not at all while the exact Hessian is paused: it stays where it
-  //   failed (relaxed once as the pause ends), instead of coming back from 1e-8 and climbing
-  //   through failed factorizations to where it was.
-  // The last two cut the failed factorizations of bunny00 Tutte from 24 to 14 (doc/NOTES.md,
-  // round seven).
+  // After an iteration, the shifts are relaxed towards their floor: most after a full step,
+  // which says the model holds; least if the shift had to grow in this iteration, as a
+  // failure costs a whole factorization (the negative modes are global, found in the last
+  // supernode); the exact shift not at all while the exact Hessian is paused, so that it
+  // does not climb back through failed factorizations to where it was.
   void relax_shifts(bool full_step, bool smoothing)
   {
-    const double relax = shift_raised_ && !smoothing ? 2 : full_step ? 16 : 4;
+    const double relax = shift_raised_ && !smoothing ? relax_after_growth : full_step ? relax_after_full_step : relax_after_short_step;
     if(exact_pause_ == 0)
       mu_exact_ = std::max(mu_exact_ / relax, mu_floor_);
     mu_projected_ = std::max(mu_projected_ / relax, mu_floor_);
@@ -437,10 +373,9 @@ private:
 
   // Whether the next iteration skips its Moebius boost step: when the last one gained less
   // than the tolerance's `threshold` and a hundredth of the Newton step that followed it, for
-  // at most `max_skipped` iterations in a row. On the protrusions' capped stages the boosts
-  // gained 1e-5 per iteration against the steps' 0.1 to 0.6, at 10 to 17% of the solver's
-  // time (its 9 to 11 energy evaluations); the conformal energies' slides along the boosts,
-  // which they are for, gain more than the tolerance.
+  // at most `max_skipped` iterations in a row: on capped stages a boost step (9 to 11
+  // energy evaluations) gains next to nothing, while the conformal energies' slides along the
+  // boosts, which they are for, gain more than the tolerance.
   struct Boost_skipping
   {
     static constexpr int max_skipped = 3;
@@ -458,8 +393,7 @@ private:
   // One Moebius boost step if the minimization makes them: what it gains (the map and its
   // energy `e` updated), 0 without boost steps. Before every iteration, and before a stop on
   // a predicted decrement: the decrement leaves the boosts out, and the conformal energies
-  // slide along them (Dirichlet at 302k faces stopped 2e-4 of its energy above its minimum
-  // on a decrement of 1.5e-3).
+  // slide along them, so a stop on the decrement alone can be far above the minimum.
   template <class Energy>
   double boost_gain(const Spherical_energy<Energy>& energy, Points& x, double& e)
   {
@@ -485,7 +419,7 @@ private:
   // where the map no longer changes visibly.
   static bool stalled(const std::vector<double>& history, double threshold)
   {
-    return recent_gain(history, 10) <= threshold;
+    return recent_gain(history, stall_window) <= threshold;
   }
 
   // The energy gained over the last `window` iterations; infinite if there were fewer.
@@ -507,8 +441,8 @@ private:
   void build_pattern()
   {
     // Lower triangle of the matrix of the free vertices: 2x2 blocks on the diagonal and at
-    // every edge between two of them, written column by column from the vertex adjacency.
-    // Per-face triplets took 0.9 s at 300k faces, of a set-up of 2.2 s.
+    // every edge between two of them, written column by column from the vertex adjacency
+    // (per-face triplets would cost nearly half the set-up).
     const std::vector<std::vector<int>> later = later_neighbours();
     const int size = int(2 * free_);
     std::size_t entries = 0;
@@ -613,8 +547,7 @@ private:
     parallel_for<ConcurrencyTag>(nf, [&](std::size_t f) {
       Triangle_jet jet = energy.template face<Triangle_jet>(f, x);
       // The barrier is not convex in the points (det is trilinear): a face it holds gets
-      // its Hessian made positive definite, while the others keep their exact one
-      // (measured on camel's fold-free stage: 104 -> 90 iterations, 13 -> 7.8 s).
+      // its Hessian made positive definite, while the others keep their exact one.
       const bool held = with_barrier_ && barrier<double>(f, x) > 0;
       if(held)
         jet += barrier<Triangle_jet>(f, x);
@@ -650,16 +583,15 @@ private:
     }
   }
 
-  // The exact Hessian with a shift of at most 1e-3 x its mean diagonal; where that is not
+  // The exact Hessian with a shift of at most `max_exact_shift` of its mean diagonal; where that is not
   // enough (strongly non-convex faces, such as a barrier or area term far from its minimum),
   // the per-face projected Hessian, whose shift then only handles the curvature term.
   // Block Jacobi: each vertex's own 2x2 block of the exact Hessian, its eigenvalues replaced by
   // their absolute values (at least a small fraction of the block's size).
   // With a coarse correction c, a two-grid cycle on the Newton system H d = -g that shares
   // the one assembly: d = c + J^-1 (-g - H c), J the block diagonal. The coarse step
-  // lowers the smooth error that block Jacobi hardly sees (302k faces, Combined: the first
-  // Newton decrement 1.34 -> 0.45). Block Jacobi alone if the cycle's direction is not one
-  // of descent. True if the direction is the two-grid cycle's.
+  // lowers the smooth error that block Jacobi hardly sees. Block Jacobi alone if the cycle's
+  // direction is not one of descent. True if the direction is the two-grid cycle's.
   template <class Energy>
   bool smoothing_direction(const Spherical_energy<Energy>& energy, const Points& x,
                            const Coarse_correction* coarse_correction, Vector& d)
@@ -711,17 +643,17 @@ private:
   }
 
   template <class Energy>
-  bool newton_direction(const Spherical_energy<Energy>& energy, const Points& x, bool projected_only, Vector& d)
+  bool newton_direction(const Spherical_energy<Energy>& energy, const Points& x, Vector& d)
   {
     // After the exact Hessian failed, skip it for a few iterations: each failure costs an
     // assembly and a factorization.
-    const bool try_exact = !projected_only && exact_pause_ == 0;
+    const bool try_exact = exact_pause_ == 0;
     if(exact_pause_ > 0)
       --exact_pause_;
-    if(try_exact && shifted_newton_direction(energy, x, false, mu_exact_, 1e-3, d))
+    if(try_exact && shifted_newton_direction(energy, x, false, mu_exact_, max_exact_shift, d))
       return true;
     if(try_exact)
-      exact_pause_ = 4;
+      exact_pause_ = exact_pause_iterations;
     return shifted_newton_direction(energy, x, true, mu_projected_, std::numeric_limits<double>::infinity(), d);
   }
 
@@ -738,12 +670,12 @@ private:
     mean_diagonal /= double(2 * free_);
     if(!std::isfinite(mean_diagonal) || mean_diagonal == 0)
       return false;
-    mu_floor_ = 1e-9 * mean_diagonal;
+    mu_floor_ = min_shift * mean_diagonal;
     mu = std::max(mu == 0 && !projected ? first_shift_ * mean_diagonal : mu, mu_floor_);
     std::vector<double> diagonal(2 * free_);  // only the diagonal changes with the shift
     for(std::size_t i = 0; i < 2 * free_; ++i)
       diagonal[i] = matrix_.valuePtr()[diagonal_index_[i]];
-    for(int attempt = 0; attempt < 60 && mu <= max_relative_shift * mean_diagonal; ++attempt, mu *= 8) {
+    for(int attempt = 0; attempt < 60 && mu <= max_relative_shift * mean_diagonal; ++attempt, mu *= shift_growth) {
       for(std::size_t i = 0; i < 2 * free_; ++i)
         matrix_.valuePtr()[diagonal_index_[i]] = diagonal[i] + mu;
       factored_ = solver_.factorize(matrix_);
@@ -785,11 +717,11 @@ private:
   double line_search(const Spherical_energy<Energy>& energy, const Points& x, const Vector& d, double e0,
                      double decrement, double& alpha, Points& trial)
   {
-    for(int k = 0; k < 50 && alpha > 0; ++k, alpha *= 0.5) {
+    for(int k = 0; k < max_halvings && alpha > 0; ++k, alpha *= 0.5) {
       for(std::size_t v = 0; v < n_; ++v)
         trial[v] = v < free_ ? retract(x[v], bases_[v], alpha * d.template segment<2>(2 * v)) : x[v];
       const double e = total_energy(energy, trial);
-      if(std::isfinite(e) && e <= e0 - 1e-4 * alpha * decrement)
+      if(std::isfinite(e) && e <= e0 - armijo * alpha * decrement)
         return e;
     }
     return std::numeric_limits<double>::infinity();
@@ -826,4 +758,4 @@ private:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_SOLVER_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_NEWTON_SOLVER_H

@@ -1,8 +1,8 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_VERTEX_ORDERED_CHOLMOD_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_VERTEX_ORDERED_CHOLMOD_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_BACKENDS_VERTEX_ORDERED_CHOLMOD_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_BACKENDS_VERTEX_ORDERED_CHOLMOD_H
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCore>
@@ -20,15 +20,14 @@ namespace internal {
 /// on the vertex graph of a Newton matrix made of 2x2 blocks (unknowns `2v` and `2v + 1` of
 /// vertex `v`), by METIS nested dissection, and expanded to the blocks.
 ///
-/// Why (bunny00 Loop-subdivided, pattern of the 2n x 2n Newton matrix, one BLAS thread):
-/// - at 1.2M faces CHOLMOD's own analysis tries AMD, finds it poor and runs METIS on the
-///   2n x 2n matrix: 7.9 s. METIS on the vertex graph: 3.7 s, the same flops (3.9e10 against
-///   3.7e10) and factorization time (5.2 s);
-/// - at 302k faces CHOLMOD keeps AMD (analysis 0.29 to 0.41 s, factorization 1.4 to 1.7 s);
-///   METIS on the vertex graph takes 0.8 s but cuts the flops 2.5x and the factorization
-///   to 1.07 s, which the 3 to 5 factorizations of a level repay;
-/// - at 75k faces it is a wash (+0.13 s of analysis, -0.04 s per factorization), hence
-///   `Cholmod_traits` asks for it from 50000 vertices on.
+/// Why (the pattern of the 2n x 2n Newton matrix; figures in doc/DESIGN.md):
+/// - on the largest meshes CHOLMOD's own analysis tries AMD, finds it poor and runs METIS on
+///   the 2n x 2n matrix; METIS on the vertex graph, half the size, takes about half the time
+///   for the same flops and factorization time;
+/// - on meshes a few times smaller CHOLMOD keeps AMD; METIS on the vertex graph costs more
+///   analysis but cuts the flops and the factorization time, which the few factorizations
+///   of a level repay;
+/// - on smaller meshes it is a wash, hence `Cholmod_traits` asks for it from 50000 vertices on.
 /// Eigen's supernodal class gives the interface; `Cholmod_traits` lets CHOLMOD choose the
 /// simplicial factorization for the matrices with few flops per entry of the factor.
 ///
@@ -261,4 +260,4 @@ private:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_VERTEX_ORDERED_CHOLMOD_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_BACKENDS_VERTEX_ORDERED_CHOLMOD_H

@@ -1,10 +1,10 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STEP_BOUND_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STEP_BOUND_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_STEP_BOUND_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_STEP_BOUND_H
 
-#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
 
 #include <algorithm>
 #include <array>
@@ -79,4 +79,4 @@ inline double largest_fold_free_step(const Faces& faces, const Points& x, const 
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STEP_BOUND_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_STEP_BOUND_H

@@ -1,8 +1,8 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CHECK_INPUT_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CHECK_INPUT_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INPUT_CHECK_INPUT_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INPUT_CHECK_INPUT_H
 
 #include <CGAL/Spherical_parameterization/Error_code.h>
 
@@ -12,6 +12,8 @@
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 #include <CGAL/number_utils.h>
+
+#include <Eigen/Core>
 
 #include <boost/graph/graph_traits.hpp>
 #include <boost/property_map/property_map.hpp>
@@ -238,22 +240,21 @@ bool check_structure(const TriangleMesh& tm, Mesh_census& census, std::string& d
   return true;
 }
 
-template <class Point>
-bool is_finite_point(const Point& p)
+inline bool is_finite_point(const Eigen::Vector3d& p)
 {
-  const double c[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
-  for(double x : c)
+  for(double x : {p.x(), p.y(), p.z()})
     if(!std::isfinite(x) || std::abs(x) > max_input_coordinate)
       return false;
   return true;
 }
 
-template <class TriangleMesh, class VertexPointMap>
-Input_report check_finite(const TriangleMesh& tm, VertexPointMap vpm)
+/// `coordinates(v)`: the point of vertex `v` as an `Eigen::Vector3d`.
+template <class TriangleMesh, class Coordinates>
+Input_report check_finite(const TriangleMesh& tm, const Coordinates& coordinates)
 {
   std::size_t bad = 0, example = 0, index = 0;
   for(auto v : vertices(tm)) {
-    if(!is_finite_point(get(vpm, v)) && bad++ == 0)
+    if(!is_finite_point(coordinates(v)) && bad++ == 0)
       example = index;
     ++index;
   }
@@ -306,24 +307,20 @@ std::size_t count_components(const TriangleMesh& tm)
   return components;
 }
 
-template <class Point>
-Epick::Point_3 to_epick(const Point& p)
-{
-  return Epick::Point_3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-}
-
 /// Zero-area triangles, decided exactly (filtered predicate) on the double coordinates.
 /// A repeated point is the collinear case with two equal points.
-template <class TriangleMesh, class VertexPointMap>
-Input_report check_degenerate_faces(const TriangleMesh& tm, VertexPointMap vpm)
+template <class TriangleMesh, class Coordinates>
+Input_report check_degenerate_faces(const TriangleMesh& tm, const Coordinates& coordinates)
 {
+  const auto point = [&](auto v) {
+    const Eigen::Vector3d p = coordinates(v);
+    return Epick::Point_3(p.x(), p.y(), p.z());
+  };
   std::size_t bad = 0, example = 0, index = 0;
   for(auto f : faces(tm)) {
     const auto h = halfedge(f, tm);
-    const Epick::Point_3 a = to_epick(get(vpm, target(h, tm)));
-    const Epick::Point_3 b = to_epick(get(vpm, target(next(h, tm), tm)));
-    const Epick::Point_3 c = to_epick(get(vpm, target(prev(h, tm), tm)));
-    if(CGAL::collinear(a, b, c) && bad++ == 0)
+    if(CGAL::collinear(point(target(h, tm)), point(target(next(h, tm), tm)), point(target(prev(h, tm), tm))) &&
+       bad++ == 0)
       example = index;
     ++index;
   }
@@ -339,8 +336,9 @@ Input_report check_degenerate_faces(const TriangleMesh& tm, VertexPointMap vpm)
 /// genus 0 and no zero-area face: the input a spherical parameterization needs.
 /// Linear time plus hashing (for graphs without index-based descriptors); never loops on
 /// corrupted halfedge structures. `detail` says where the first failing check failed.
-template <class TriangleMesh, class VertexPointMap>
-Input_report check_input(const TriangleMesh& tm, VertexPointMap vpm)
+/// `coordinates(v)`: the point of vertex `v` as an `Eigen::Vector3d` (`point_coordinates()`).
+template <class TriangleMesh, class Coordinates>
+Input_report check_input(const TriangleMesh& tm, const Coordinates& coordinates)
 {
   Mesh_census census;
   count_elements(tm, census);
@@ -360,7 +358,7 @@ Input_report check_input(const TriangleMesh& tm, VertexPointMap vpm)
                 count_of(census.non_triangles, "non-triangular face") +
                 " in total); the CLI option --triangulate can fix it"};
 
-  Input_report report = check_finite(tm, vpm);
+  Input_report report = check_finite(tm, coordinates);
   if(report.code != Error_code::OK)
     return report;
 
@@ -391,11 +389,11 @@ Input_report check_input(const TriangleMesh& tm, VertexPointMap vpm)
     return {Error_code::NOT_GENUS_ZERO,
             "genus " + std::to_string((2 - chi) / 2) + " (Euler characteristic " + std::to_string(chi) + ")"};
 
-  return check_degenerate_faces(tm, vpm);
+  return check_degenerate_faces(tm, coordinates);
 }
 
 } // namespace internal
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CHECK_INPUT_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INPUT_CHECK_INPUT_H

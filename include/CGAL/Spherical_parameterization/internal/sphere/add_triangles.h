@@ -1,8 +1,8 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ADD_TRIANGLES_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ADD_TRIANGLES_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_ADD_TRIANGLES_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_ADD_TRIANGLES_H
 
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -51,4 +51,4 @@ add_triangles(const std::vector<Eigen::Vector3d>& points, const std::vector<std:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ADD_TRIANGLES_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_ADD_TRIANGLES_H

@@ -1,11 +1,11 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERICAL_TRIANGULATION_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERICAL_TRIANGULATION_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_SPHERICAL_TRIANGULATION_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_SPHERICAL_TRIANGULATION_H
 
-#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
-#include <CGAL/Spherical_parameterization/internal/map_validity.h>
+#include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/validity/map_validity.h>
 #include <CGAL/Spherical_parameterization/octahedral_map.h>
 
 #include <Eigen/Core>
@@ -173,10 +173,7 @@ private:
 
   void orient_faces()
   {
-    double area = 0;
-    for(const auto& t : faces_)
-      area += signed_spherical_area(sphere_[t[0]], sphere_[t[1]], sphere_[t[2]]);
-    reversed_ = area < 0;
+    reversed_ = degree(faces_, sphere_) < 0;
     if(reversed_)
       for(auto& t : faces_)
         std::swap(t[1], t[2]);
@@ -261,4 +258,4 @@ private:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERICAL_TRIANGULATION_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_SPHERICAL_TRIANGULATION_H

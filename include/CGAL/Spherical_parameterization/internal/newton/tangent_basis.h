@@ -1,8 +1,8 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_BASIS_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_BASIS_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_TANGENT_BASIS_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_TANGENT_BASIS_H
 
 #include <Eigen/Core>
 #include <cmath>
@@ -35,4 +35,4 @@ inline Eigen::Vector3d retract(const Eigen::Vector3d& p, const Eigen::Matrix<dou
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_BASIS_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_NEWTON_TANGENT_BASIS_H

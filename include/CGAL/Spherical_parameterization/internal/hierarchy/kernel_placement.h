@@ -1,12 +1,12 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_KERNEL_PLACEMENT_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_KERNEL_PLACEMENT_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_HIERARCHY_KERNEL_PLACEMENT_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_HIERARCHY_KERNEL_PLACEMENT_H
 
-#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
-#include <CGAL/Spherical_parameterization/internal/map_validity.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_basis.h>
+#include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/validity/map_validity.h>
+#include <CGAL/Spherical_parameterization/internal/newton/tangent_basis.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -74,7 +74,7 @@ inline bool convex_polygon_centroid(const std::vector<Eigen::Vector2d>& normals,
 /// with Floater's mean value coordinates (2003) of `u` on the input surface, the corner angles
 /// of the fan at `u` scaled to sum to `2 pi` (the geodesic polar map) and the input edge
 /// lengths. The weights are positive and reproduce the input's local shape, which the
-/// ring's plain centre does not (measured: a fine level then needs fewer Newton iterations).
+/// ring's plain centre does not, so that a fine level needs fewer Newton iterations.
 inline Eigen::Vector3d mean_value_point(int u, const Points& input, const Points& sphere, const Fan& fan)
 {
   double total_angle = 0;
@@ -131,4 +131,4 @@ inline Eigen::Vector3d place_in_kernel(const Points& points, const Fan& fan, con
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_KERNEL_PLACEMENT_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_HIERARCHY_KERNEL_PLACEMENT_H

@@ -1,10 +1,10 @@
 // Copyright (c) 2026 The CGAL Spherical_parameterization authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_PROGRESSIVE_MESH_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_PROGRESSIVE_MESH_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_HIERARCHY_PROGRESSIVE_MESH_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_HIERARCHY_PROGRESSIVE_MESH_H
 
-#include <CGAL/Spherical_parameterization/internal/Triangle_soup.h>
+#include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -86,8 +86,8 @@ struct Vertex_split
 /// above 12: the coarse levels are solved as meshes of their own and need fair triangles.
 /// The geometric tests are skipped for a vertex nearly on top of its target
 /// (`is_near_duplicate()`).
-/// Passes over arrays rather than one global queue: measured 5x faster at 1.2M faces, where a
-/// heap of stale entries no longer fits in the caches.
+/// Passes over arrays rather than one global queue: on large meshes a heap of stale entries
+/// no longer fits in the caches, and the passes are several times faster.
 class Progressive_mesh
 {
 public:
@@ -166,7 +166,7 @@ private:
   double collapse_cost(int u, int v) const
   {
     // Not `p << point(v), 1.0`: that comma initializer compiles to a loop over a dynamic
-    // block, 12% of the set-up time at 1.2M faces.
+    // block, a noticeable share of the set-up time on large meshes.
     const Eigen::Vector4d p(point(v).x(), point(v).y(), point(v).z(), 1.0);
     const double squared_length = (point(u) - point(v)).squaredNorm();
     return std::max(0.0, p.dot((quadric_[u] + quadric_[v]) * p)) + 0.01 * squared_length * squared_length;
@@ -245,8 +245,8 @@ private:
   // v is closer to u than a twentieth of u's mean edge: the near-coincident vertices of an
   // isosurface's cluster (see `Triangle_soup::area_floor()`). Moving u onto v changes the
   // surface by less than the noise of the cluster's own faces, whose normals are arbitrary:
-  // the geometric tests refused those collapses, and the clusters lasted into the coarse
-  // levels (the coarsest of marching tetrahedra at 219k faces had 2468 vertices, not 500).
+  // the geometric tests would refuse those collapses, and the clusters would last into the
+  // coarse levels, far above their target size.
   bool is_near_duplicate(int u, int v) const
   {
     double sum = 0;
@@ -444,4 +444,4 @@ inline Triangle_soup level_soup(const Triangle_soup& input, const Refinement& re
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_PROGRESSIVE_MESH_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_HIERARCHY_PROGRESSIVE_MESH_H
