@@ -495,9 +495,8 @@ void test_irregular(Mesh mesh, const std::string& what, const std::string& shape
 
 /// A cylinder of long thin triangles with fan caps, as CAD tessellations make it, mapped with
 /// `energy`: valid and nearly conformal. The paper's clamp of the input angles to [5, 85]
-/// degrees, Dirichlet_energy's default until session 43, halved the weight of each needle's
-/// short edge, raised its long edges' and left mean quasi-conformal ratios of 6.95
-/// (Dirichlet) and 1.49 (Combined).
+/// degrees halves the weight of each needle's short edge and raises its long edges', which
+/// leaves such a cylinder far from conformal.
 template <class Energy>
 void test_cad_cylinder(const Energy& energy, const std::string& energy_name, double max_mean_quasi_conformal)
 {
@@ -512,8 +511,8 @@ void test_cad_cylinder(const Energy& energy, const std::string& energy_name, dou
          d.quasi_conformal.mean < max_mean_quasi_conformal, "mean " + str(d.quasi_conformal.mean));
 }
 
-/// Measured at 75k to 300k faces with the command line tool (doc/NOTES.md, session 22):
-/// stretching makes protrusions, jitter slows the input level; all valid.
+/// Irregular inputs: stretching makes protrusions, jitter makes skinny triangles, slivers and
+/// near-duplicate vertices make nearly degenerate faces, isosurfaces all of these; all valid.
 void test_irregular_shapes()
 {
   const auto start = std::chrono::steady_clock::now();
@@ -527,30 +526,22 @@ void test_irregular_shapes()
   report("[bumpy ellipsoid jittered]: skinny triangles (smallest angle under 5 degrees, over 15 before)",
          after < 5 && before > 15, std::to_string(before) + " -> " + std::to_string(after));
   test_irregular(uneven, "jittered by up to 45% of the edges");
-  // Slivers on protrusions: with a raised barrier activation and the kernel's centroid for their
-  // split vertices, they ended degenerate or far above the minimum (doc/NOTES.md, session 28).
+  // Slivers on protrusions: their barrier and their split vertices' placement must keep them
+  // non-degenerate.
   test_irregular(with_slivers(transformed(base, [](const Point& p) { return Point(p.x(), p.y(), 8 * p.z()); }), 50, 1e-6),
                  "stretched 8 times along z, with 50 slivers of relative height 1e-6");
-  // Near-duplicate vertices: their needles, all but degenerate, gave the area term weights of
-  // 1e16 and no valid map, before reference triangles were mollified (doc/NOTES.md, session 29).
+  // Near-duplicate vertices: their needles, all but degenerate, would give the area terms
+  // weights of 1e16 without the mollified reference triangles.
   test_irregular(with_needles(base, 50, 1e-6), "with 50 near-duplicate vertices at 1e-6 of an edge");
-  // A coiled tube 3 circumferences long: its conformal map would squeeze part of it by about
-  // exp(-19) in area, so Combined ends with faces on the fold barrier's floor (doc/NOTES.md,
-  // session 37).
+  // A coiled tube 3 circumferences long: a conformal map would squeeze part of it by about
+  // exp(-19) in area.
   test_irregular(synthetic_shapes::helix<Point>(0.5), "coiled half a turn", "thin tube");
   test_cad_cylinder(SP::Dirichlet_energy(), "Dirichlet", 1.3);
   test_cad_cylinder(SP::combined_energy(1, 1), "Combined", 1.3);
   // Isosurfaces by marching tetrahedra: clusters of near-coincident vertices with faces of
-  // 1e-14 of the mesh's area among needles. Combined left no valid map on the sphere through
-  // 84 grid points (also with the area floor, until the local scale reached the clusters'
-  // inner vertices) and did not converge on the blobs, before the area energy's floor and
-  // the hierarchy's collapses of near-duplicates (doc/NOTES.md, session 41).
-  // The sphere's map was valid but far from a minimum (E 82.6, 44.7 re-solved from it), the
-  // starfish's (five thin arms) not converged after 337 iterations at E 67.5 (62.58) on the
-  // coarser grid and at E 63.99 (63.68) on the finer one, until the continuation's barrier
-  // measured the faces under their area floor against that floor (doc/NOTES.md, session 42).
-  // The finer one's optimistic stage ends with a few flipped faces that untangle locally, the
-  // coarser one's do not.
+  // 1e-14 of the mesh's area among needles, held by the area floors of the reference
+  // triangles; the finer starfish's optimistic stage ends with a few flipped faces that
+  // untangle locally, the coarser one's do not.
   test_irregular(synthetic_shapes::lattice_sphere<Point>(50), "through 84 grid points (marching tetrahedra)", "sphere", true);
   test_irregular(synthetic_shapes::metaballs<Point>(40), "by marching tetrahedra", "blobs");
   test_irregular(synthetic_shapes::starfish<Point>(60), "by marching tetrahedra", "starfish", true);
