@@ -70,6 +70,8 @@ class Newton_solver
   // Fold-free steps stop at this share of the first root of a face's determinant: closer
   // leaves faces nearly degenerate for the next step, farther shortens every capped step.
   static constexpr double step_cap_share = 0.8;
+  // The longest extension of a projected Newton step (`extend_step()`).
+  static constexpr double max_step_extension = 64;
   // Armijo's sufficient decrease, and the halvings the line search tries.
   static constexpr double armijo = 1e-4;
   static constexpr int max_halvings = 50;
@@ -178,6 +180,8 @@ public:
         capped = alpha < 1;
         e_new = line_search(energy, x, d, e, decrement, alpha, trial);
       }
+      if(alpha == 1 && !smoothing && projected_ && !options.keep_fold_free)
+        e_new = extend_step(energy, x, d, e_new, alpha, trial);
       if(!(e_new < e)) {
         // No decrease along a direction of descent: precision is exhausted, or the
         // shift is too small for this non-convex stretch. Grow it once before giving up.
@@ -211,7 +215,7 @@ public:
       threshold = options.tolerance * std::abs(e + options.held_energy);
       ++out.iterations;
       out.energy = e;
-      relax_shifts(alpha == 1, smoothing);
+      relax_shifts(alpha >= 1, smoothing);
 
       Progress p;
       p.stage = options.stage;
@@ -279,6 +283,7 @@ public:
     std::vector<double>().swap(face_value_);
     std::vector<Eigen::Vector3d>().swap(ambient_gradient_);
     Vector().swap(gradient_);
+    Points().swap(probe_);
   }
 
   /// Allocates the buffers of the first assembly and the factor (the solver traits'
@@ -650,10 +655,12 @@ private:
     const bool try_exact = exact_pause_ == 0;
     if(exact_pause_ > 0)
       --exact_pause_;
+    projected_ = false;
     if(try_exact && shifted_newton_direction(energy, x, false, mu_exact_, max_exact_shift, d))
       return true;
     if(try_exact)
       exact_pause_ = exact_pause_iterations;
+    projected_ = true;
     return shifted_newton_direction(energy, x, true, mu_projected_, std::numeric_limits<double>::infinity(), d);
   }
 
@@ -712,6 +719,31 @@ private:
     return finite_sum(face_value_);
   }
 
+  // A full step of the projected Hessian, doubled while the energy falls; returns the energy
+  // at the accepted point `trial`, `alpha` its step. Projection turns each face's negative
+  // curvature into positive, so that model is stiffer than the energy along the slides of
+  // non-convex energies (area terms held away from zero), and its full step stops short. Not
+  // in the capped stages, whose steps must not cross a fold, and never into a fold from a
+  // fold-free step.
+  template <class Energy>
+  double extend_step(const Spherical_energy<Energy>& energy, const Points& x, const Vector& d, double e, double& alpha,
+                     Points& trial)
+  {
+    probe_.resize(n_);
+    const bool fold_free = count_bad_faces(*faces_, trial) == 0;
+    for(double a = 2 * alpha; a <= max_step_extension; a *= 2) {
+      for(std::size_t v = 0; v < n_; ++v)
+        probe_[v] = v < free_ ? retract(x[v], bases_[v], a * d.template segment<2>(2 * v)) : x[v];
+      const double e_probe = total_energy(energy, probe_);
+      if(!(e_probe < e) || (fold_free && count_bad_faces(*faces_, probe_) > 0))
+        break;
+      e = e_probe;
+      alpha = a;
+      trial.swap(probe_);
+    }
+    return e;
+  }
+
   // Armijo backtracking from `alpha`; returns the accepted energy (or +inf) with the point in `trial`.
   template <class Energy>
   double line_search(const Spherical_energy<Energy>& energy, const Points& x, const Vector& d, double e0,
@@ -740,6 +772,7 @@ private:
   std::vector<int> diagonal_index_;
   SparseSolver solver_;
   bool factored_ = false;  // the last factorization succeeded: `solver_` holds a factor
+  bool projected_ = false;  // the last Newton direction came from the projected Hessian
   int exact_pause_ = 0;  // iterations to go before the exact Hessian is tried again
   bool shift_raised_ = false;  // the last factorization needed a larger shift than its first try
   double mu_exact_ = 0, mu_projected_ = 0, mu_floor_ = 0;
@@ -752,6 +785,7 @@ private:
   std::vector<double> face_value_;
   std::vector<Eigen::Vector3d> ambient_gradient_;
   Vector gradient_;
+  Points probe_;  // the points of a step's extension
 };
 
 } // namespace internal
