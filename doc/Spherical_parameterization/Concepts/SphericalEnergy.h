@@ -79,5 +79,14 @@ public:
   Number flat_energy(const CGAL::Spherical_parameterization::Chord_triangle<Number>& t,
                      const Face_data& d) const;
 
+  /*!
+  Optional: `true` if the energy grows without bound as a face's signed area goes to zero, as
+  `Area_distortion_energy` does. The solver then lengthens the full steps of its positive
+  definite Hessian model while the energy keeps falling, since such an energy's Hessian
+  stays indefinite in the compressed faces up to its minimum. `Weighted_sum` forwards it from
+  its terms of non-zero weight. An energy without this member is taken not to have one.
+  */
+  bool has_area_barrier() const;
+
   /// @}
 };

@@ -30,6 +30,7 @@ struct Area_distortion_energy
 {
   /// \cond SKIP_IN_MANUAL
   using Face_data = double;  // input area
+  bool has_area_barrier() const { return true; }
   Face_data face_data(const Reference_triangle& r) const { return std::max(r.area, r.area_floor); }
 
   template <class Number>

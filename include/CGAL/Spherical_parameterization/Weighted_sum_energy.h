@@ -8,6 +8,7 @@
 #include <CGAL/Spherical_parameterization/Chord_triangle.h>
 #include <CGAL/Spherical_parameterization/Dirichlet_energy.h>
 #include <CGAL/Spherical_parameterization/Reference_triangle.h>
+#include <CGAL/Spherical_parameterization/internal/energies/area_barrier.h>
 
 #include <array>
 #include <tuple>
@@ -44,6 +45,17 @@ public:
   Face_data face_data(const Reference_triangle& r) const
   {
     return std::apply([&](const auto&... e) { return Face_data(e.face_data(r)...); }, energies_);
+  }
+
+  // A term of non-zero weight has an area barrier.
+  bool has_area_barrier() const
+  {
+    return std::apply(
+      [&](const auto&... e) {
+        std::size_t i = 0;
+        return ((weights_[i++] != 0 && internal::has_area_barrier(e)) || ...);
+      },
+      energies_);
   }
 
   template <class Number>

@@ -89,6 +89,14 @@ struct Newton_options
   /// by faces the barrier does not hold yet and gains little against the tolerance. For the
   /// input's last stage only: an earlier stop anywhere else changes the stages that follow.
   bool stop_slow_capped_tail = false;
+  /// Double a full step of the projected Hessian while the energy falls
+  /// (`Newton_solver::extend_step()`). For energies with an area barrier
+  /// (`has_area_barrier()`): their Hessian stays indefinite in every compressed face up to the
+  /// minimum (`det` is trilinear in the points), the projection turns that negative curvature
+  /// into positive, so the model is stiffer than the energy and its full steps slide at a
+  /// linear rate. The paper's energies are nearly convex near their minima, where the exact
+  /// Hessian takes over; extending their early steps only moves them to other basins.
+  bool extend_projected_steps = false;
   const char* stage = "";            ///< for progress reports
   std::size_t iteration_offset = 0;  ///< iterations of earlier stages, for progress reports
 };

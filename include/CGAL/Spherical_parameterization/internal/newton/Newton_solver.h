@@ -84,6 +84,7 @@ class Newton_solver
   // rotations, so no vertex is fixed; they grow by `shift_growth` per failed factorization.
   static constexpr double min_shift = 1e-9;
   static constexpr double shift_growth = 8;
+  static constexpr int max_shift_attempts = 60;  // from the floor, 8^60 covers every scale of a double
   // A direction of descent with no decrease at all: the shifts grow by this and the iteration
   // is retried, while the projected shift is under `max_retry_shift` times its floor.
   static constexpr double retry_shift_growth = 64;
@@ -180,7 +181,7 @@ public:
         capped = alpha < 1;
         e_new = line_search(energy, x, d, e, decrement, alpha, trial);
       }
-      if(alpha == 1 && !smoothing && projected_ && !options.keep_fold_free)
+      if(options.extend_projected_steps && alpha == 1 && !smoothing && projected_ && !options.keep_fold_free)
         e_new = extend_step(energy, x, d, e_new, alpha, trial);
       if(!(e_new < e)) {
         // No decrease along a direction of descent: precision is exhausted, or the
@@ -384,13 +385,14 @@ private:
   struct Boost_skipping
   {
     static constexpr int max_skipped = 3;
+    static constexpr double negligible_share = 1e-2;  // of the Newton step's decrease
     double last_gain = std::numeric_limits<double>::infinity();
     double last_decrease = 0;  // of the last Newton iteration
     int skipped = 0;           // iterations in a row without a boost step
 
     bool skip(double threshold) const
     {
-      return skipped < max_skipped && last_gain < threshold && last_gain < 1e-2 * last_decrease;
+      return skipped < max_skipped && last_gain < threshold && last_gain < negligible_share * last_decrease;
     }
     void record(double gain) { last_gain = gain; skipped = 0; }
   };
@@ -412,9 +414,10 @@ private:
   // Newton's decrement converges quadratically near a minimum, d_next = C d^2, with C
   // estimated from the last two: d^3 / previous^2. Without a previous full step, or if the
   // decrement did not shrink by 4, no prediction: the decrement itself is returned.
+  static constexpr double min_quadratic_shrink = 4;
   static double predicted_decrement(double previous, double decrement)
   {
-    if(!(previous > 4 * decrement))
+    if(!(previous > min_quadratic_shrink * decrement))
       return decrement;
     return decrement * (decrement / previous) * (decrement / previous);
   }
@@ -630,7 +633,10 @@ private:
     return step.allFinite();
   }
 
-  // d = J^-1 r for the block diagonal J of the assembled Hessian.
+  // d = J^-1 r for the block diagonal J of the assembled Hessian, each block's eigenvalues
+  // replaced by their absolute values, at least this share of the largest (a near-singular
+  // block, such as a vertex whose faces are all flat along one direction, must not blow up).
+  static constexpr double block_jacobi_floor = 1e-6;
   void block_jacobi(const Vector& r, Vector& d) const
   {
     d.resize(2 * free_);
@@ -640,7 +646,8 @@ private:
       block << matrix_.valuePtr()[k], matrix_.valuePtr()[k + 1], matrix_.valuePtr()[k + 1],
                matrix_.valuePtr()[diagonal_index_[2 * v + 1]];
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(block);
-      const double floor = 1e-6 * eigen.eigenvalues().cwiseAbs().maxCoeff() + std::numeric_limits<double>::min();
+      const double floor =
+        block_jacobi_floor * eigen.eigenvalues().cwiseAbs().maxCoeff() + std::numeric_limits<double>::min();
       const Eigen::Vector2d inverse = eigen.eigenvalues().cwiseAbs().cwiseMax(floor).cwiseInverse();
       d.template segment<2>(2 * v) =
         (eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose()) * r.template segment<2>(2 * v);
@@ -682,7 +689,7 @@ private:
     std::vector<double> diagonal(2 * free_);  // only the diagonal changes with the shift
     for(std::size_t i = 0; i < 2 * free_; ++i)
       diagonal[i] = matrix_.valuePtr()[diagonal_index_[i]];
-    for(int attempt = 0; attempt < 60 && mu <= max_relative_shift * mean_diagonal; ++attempt, mu *= shift_growth) {
+    for(int attempt = 0; attempt < max_shift_attempts && mu <= max_relative_shift * mean_diagonal; ++attempt, mu *= shift_growth) {
       for(std::size_t i = 0; i < 2 * free_; ++i)
         matrix_.valuePtr()[diagonal_index_[i]] = diagonal[i] + mu;
       factored_ = solver_.factorize(matrix_);
@@ -720,10 +727,8 @@ private:
   }
 
   // A full step of the projected Hessian, doubled while the energy falls; returns the energy
-  // at the accepted point `trial`, `alpha` its step. Projection turns each face's negative
-  // curvature into positive, so that model is stiffer than the energy along the slides of
-  // non-convex energies (area terms held away from zero), and its full step stops short. Not
-  // in the capped stages, whose steps must not cross a fold, and never into a fold from a
+  // at the accepted point `trial`, `alpha` its step (`Newton_options::extend_projected_steps`).
+  // Not in the capped stages, whose steps must not cross a fold, and never into a fold from a
   // fold-free step.
   template <class Energy>
   double extend_step(const Spherical_energy<Energy>& energy, const Points& x, const Vector& d, double e, double& alpha,

@@ -9,6 +9,7 @@
 #include <CGAL/Spherical_parameterization/internal/backends/parallel_for.h>
 #include <CGAL/Spherical_parameterization/internal/energies/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/energies/Untangling_energy.h>
+#include <CGAL/Spherical_parameterization/internal/energies/area_barrier.h>
 #include <CGAL/Spherical_parameterization/internal/hierarchy/Coarse_to_fine.h>
 #include <CGAL/Spherical_parameterization/internal/hierarchy/Level.h>
 #include <CGAL/Spherical_parameterization/internal/hierarchy/Progressive_mesh.h>
@@ -410,6 +411,7 @@ private:
                           Newton_options options)
   {
     options.boost_search = moebius_boosts_ && !options.stop_when_fold_free;
+    options.extend_projected_steps = has_area_barrier(energy);
     options.stage = stage_name(stage);
     options.iteration_offset = log_.iterations;
     const Spherical_energy<StageEnergy> spherical(level.soup, energy, correction_, ConcurrencyTag());
