@@ -77,7 +77,7 @@ class Newton_solver
   static constexpr int max_halvings = 50;
   // The exact Hessian takes shifts up to this share of its mean diagonal; beyond, the per-face
   // projected Hessian, and the exact one pauses for a few iterations (a failed attempt costs
-  // an assembly and factorizations).
+  // factorizations).
   static constexpr double max_exact_shift = 1e-3;
   static constexpr int exact_pause_iterations = 4;
   // The shifts never go under this share of the mean diagonal, which also absorbs the three
@@ -552,26 +552,57 @@ private:
     const std::size_t nf = faces_->size();
     face_gradient_.resize(nf);
     face_hessian_.resize(nf * lower_entries);
+    held_.resize(nf);
     parallel_for<ConcurrencyTag>(nf, [&](std::size_t f) {
       Triangle_jet jet = energy.template face<Triangle_jet>(f, x);
       // The barrier is not convex in the points (det is trilinear): a face it holds gets
       // its Hessian made positive definite, while the others keep their exact one.
       const bool held = with_barrier_ && barrier<double>(f, x) > 0;
+      held_[f] = held;
       if(held)
         jet += barrier<Triangle_jet>(f, x);
       face_gradient_[f] = jet.gradient;
       Face_hessian h = tangent_hessian(f, jet.hessian);
       if(projected || held)
         project_to_psd(h);
-      double* out = &face_hessian_[f * lower_entries];
+      store_lower(h, f);
+    });
+    sum_face_terms(x);
+  }
+
+  // After an assembly of the exact Hessian at `x`: the same face terms with every face's
+  // Hessian projected, as `assemble(energy, x, true)` gives them, without evaluating the
+  // faces again (the projection reads only the lower triangle that the assembly kept).
+  void project_assembled_faces(const Points& x)
+  {
+    parallel_for<ConcurrencyTag>(faces_->size(), [&](std::size_t f) {
+      if(held_[f])
+        return;  // projected already
+      Face_hessian h;
+      const double* in = &face_hessian_[f * lower_entries];
       for(int i = 0; i < 6; ++i)
         for(int j = 0; j <= i; ++j)
-          *out++ = h(i, j);
+          h(i, j) = h(j, i) = *in++;
+      project_to_psd(h);
+      store_lower(h, f);
     });
+    sum_face_terms(x);
+  }
 
+  void store_lower(const Face_hessian& h, std::size_t f)
+  {
+    double* out = &face_hessian_[f * lower_entries];
+    for(int i = 0; i < 6; ++i)
+      for(int j = 0; j <= i; ++j)
+        *out++ = h(i, j);
+  }
+
+  // The matrix (without shift) and the gradients from the face terms.
+  void sum_face_terms(const Points& x)
+  {
     std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
     ambient_gradient_.assign(n_, Eigen::Vector3d::Zero());
-    for(std::size_t f = 0; f < nf; ++f) {
+    for(std::size_t f = 0; f < faces_->size(); ++f) {
       const auto& t = (*faces_)[f];
       for(int i = 0; i < 3; ++i)
         ambient_gradient_[t[i]] += face_gradient_[f].template segment<3>(3 * i);
@@ -657,27 +688,30 @@ private:
   template <class Energy>
   bool newton_direction(const Spherical_energy<Energy>& energy, const Points& x, Vector& d)
   {
-    // After the exact Hessian failed, skip it for a few iterations: each failure costs an
-    // assembly and a factorization.
+    // After the exact Hessian failed, skip it for a few iterations: each failure costs
+    // factorizations, and the projection of the faces it assembled.
     const bool try_exact = exact_pause_ == 0;
     if(exact_pause_ > 0)
       --exact_pause_;
     projected_ = false;
-    if(try_exact && shifted_newton_direction(energy, x, false, mu_exact_, max_exact_shift, d))
-      return true;
-    if(try_exact)
+    if(try_exact) {
+      assemble(energy, x, false);
+      if(shifted_newton_direction(mu_exact_, false, max_exact_shift, d))
+        return true;
       exact_pause_ = exact_pause_iterations;
+      project_assembled_faces(x);
+    } else {
+      assemble(energy, x, true);
+    }
     projected_ = true;
-    return shifted_newton_direction(energy, x, true, mu_projected_, std::numeric_limits<double>::infinity(), d);
+    return shifted_newton_direction(mu_projected_, true, std::numeric_limits<double>::infinity(), d);
   }
 
-  // Solves (H + mu I) d = -g with the smallest shift mu >= its floor, grown x8 per failed
-  // factorization. False if mu would exceed `max_relative_shift` x the mean diagonal.
-  template <class Energy>
-  bool shifted_newton_direction(const Spherical_energy<Energy>& energy, const Points& x, bool projected,
-                                double& mu, double max_relative_shift, Vector& d)
+  // Solves (H + mu I) d = -g, H the assembled matrix, with the smallest shift mu >= its
+  // floor, grown x8 per failed factorization. False if mu would exceed `max_relative_shift`
+  // x the mean diagonal.
+  bool shifted_newton_direction(double& mu, bool projected, double max_relative_shift, Vector& d)
   {
-    assemble(energy, x, projected);
     double mean_diagonal = 0;
     for(std::size_t i = 0; i < 2 * free_; ++i)
       mean_diagonal += std::abs(matrix_.valuePtr()[diagonal_index_[i]]);
@@ -787,6 +821,7 @@ private:
   std::vector<Basis> bases_;
   std::vector<Triangle_jet::Gradient> face_gradient_;
   std::vector<double> face_hessian_;
+  std::vector<char> held_;  // per face: held by the fold barrier at the last assembly
   std::vector<double> face_value_;
   std::vector<Eigen::Vector3d> ambient_gradient_;
   Vector gradient_;
