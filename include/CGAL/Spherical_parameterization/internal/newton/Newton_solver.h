@@ -771,8 +771,7 @@ private:
     probe_.resize(n_);
     const bool fold_free = count_bad_faces(*faces_, trial) == 0;
     for(double a = 2 * alpha; a <= max_step_extension; a *= 2) {
-      for(std::size_t v = 0; v < n_; ++v)
-        probe_[v] = v < free_ ? retract(x[v], bases_[v], a * d.template segment<2>(2 * v)) : x[v];
+      step_to(x, d, a, probe_);
       const double e_probe = total_energy(energy, probe_);
       if(!(e_probe < e) || (fold_free && count_bad_faces(*faces_, probe_) > 0))
         break;
@@ -783,14 +782,20 @@ private:
     return e;
   }
 
+  // The points `x` moved by `alpha d` in their tangent charts; the fixed vertices stay.
+  void step_to(const Points& x, const Vector& d, double alpha, Points& out) const
+  {
+    for(std::size_t v = 0; v < n_; ++v)
+      out[v] = v < free_ ? retract(x[v], bases_[v], alpha * d.template segment<2>(2 * v)) : x[v];
+  }
+
   // Armijo backtracking from `alpha`; returns the accepted energy (or +inf) with the point in `trial`.
   template <class Energy>
   double line_search(const Spherical_energy<Energy>& energy, const Points& x, const Vector& d, double e0,
                      double decrement, double& alpha, Points& trial)
   {
     for(int k = 0; k < max_halvings && alpha > 0; ++k, alpha *= 0.5) {
-      for(std::size_t v = 0; v < n_; ++v)
-        trial[v] = v < free_ ? retract(x[v], bases_[v], alpha * d.template segment<2>(2 * v)) : x[v];
+      step_to(x, d, alpha, trial);
       const double e = total_energy(energy, trial);
       if(std::isfinite(e) && e <= e0 - armijo * alpha * decrement)
         return e;
