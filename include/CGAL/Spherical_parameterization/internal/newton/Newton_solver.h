@@ -237,11 +237,18 @@ public:
       const bool quadratic_tail =
         model_held && (decrement <= quadratic_tail_margin * threshold ||
                        (options.predict_convergence && predicted <= predicted_margin * threshold));
-      if(quadratic_tail && options.predict_convergence && boost_gain(energy, x, e) > threshold) {
+      // With `predict_convergence`, also a step of at least Newton's length that gained under
+      // the threshold, its decrement under `quadratic_tail_margin` thresholds: the projected
+      // model's extended steps, whose decrements shrink at a linear rate, stop here rather
+      // than factor once more only to find the next decrement under the threshold.
+      const bool linear_tail = options.predict_convergence && !smoothing && alpha >= 1 && decrease <= threshold &&
+                               decrement <= quadratic_tail_margin * threshold;
+      const bool tail = quadratic_tail || linear_tail;
+      if(tail && options.predict_convergence && boost_gain(energy, x, e) > threshold) {
         out.energy = e;
         continue;
       }
-      if(quadratic_tail || decrease <= negligible_decrease * threshold || stalled(history, threshold) ||
+      if(tail || decrease <= negligible_decrease * threshold || stalled(history, threshold) ||
          (options.stop_slow_capped_tail && slow_capped_tail(history, capped_steps, threshold))) {
         out.stop = Newton_stop::CONVERGED;
         break;
