@@ -228,6 +228,29 @@ void test_mean_value_point()
   }
   report("mean value point: reproduces the centre of a planar fan mapped by a similarity (rel 1e-9)", worst < 1e-9,
          "relative error " + str(worst));
+
+  // A flat-folded input fan, as marching cubes leave some: its four faces in one plane, the
+  // first turning by theta and the three others back, so the first corner is half the total
+  // angle. Scaled to 2 pi, that corner is pi and its weight tan(pi / 2) of either sign; the
+  // point must stay by its ring all the same.
+  int near_ring = 0;
+  const int trials = 40;
+  for(int n = 0; n < trials; ++n) {
+    const Eigen::Vector3d normal = random_unit_vector();
+    const Eigen::Matrix<double, 3, 2> plane = I::tangent_basis(normal);
+    const double theta = uniform(2.0, 3.05), back = uniform(0.3, 0.7) * theta, last = uniform(0.1, 0.9) * back;
+    I::Points input{Eigen::Vector3d::Zero()};
+    for(const double angle : {0.0, theta, back, last})
+      input.push_back(uniform(0.5, 2.0) * (plane * Eigen::Vector2d(std::cos(angle), std::sin(angle))));
+    const Eigen::Vector3d center = random_unit_vector();
+    I::Points sphere{center};
+    for(const Eigen::Vector3d& p : ring_points(center, 4, 0.05, 1.0))
+      sphere.push_back(p);
+    const Eigen::Vector3d got = I::mean_value_point(0, input, sphere, fan_of_ring(1, 4));
+    near_ring += got.allFinite() && got.dot(center) > std::cos(0.1);
+  }
+  report("mean value point: by its ring for a flat-folded fan (a corner of half the total angle)",
+         near_ring == trials, str(near_ring) + " of " + str(trials));
 }
 
 void test_mobius_boost()

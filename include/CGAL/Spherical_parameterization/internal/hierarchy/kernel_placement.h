@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <vector>
 
 namespace CGAL {
@@ -73,21 +74,29 @@ inline bool convex_polygon_centroid(const std::vector<Eigen::Vector2d>& normals,
 /// Where the vertex `u` goes when a vertex split is undone: its ring's sphere points averaged
 /// with Floater's mean value coordinates (2003) of `u` on the input surface, the corner angles
 /// of the fan at `u` scaled to sum to `2 pi` (the geodesic polar map) and the input edge
-/// lengths. The weights are positive and reproduce the input's local shape, which the
-/// ring's plain centre does not, so that a fine level needs fewer Newton iterations.
+/// lengths. They reproduce the input's local shape, which the ring's plain centre does not,
+/// so that a fine level needs fewer Newton iterations. The weights, `tan(angle / 2)`, are
+/// positive only while every angle is under `pi`: a fan with one corner of half its total
+/// angle or more (a nearly flat pair of faces at a cone point, as marching cubes leave them)
+/// would get a weight of either sign and any size, and the point could land anywhere, even
+/// opposite its ring. Such a fan keeps its own angles, each a triangle's corner, under `pi`.
 inline Eigen::Vector3d mean_value_point(int u, const Points& input, const Points& sphere, const Fan& fan)
 {
-  double total_angle = 0;
+  std::vector<double> angle;
+  angle.reserve(fan.size());
   for(const auto& [p, q] : fan) {
     const Eigen::Vector3d a = input[p] - input[u], b = input[q] - input[u];
-    total_angle += std::atan2(a.cross(b).norm(), a.dot(b));
+    angle.push_back(std::atan2(a.cross(b).norm(), a.dot(b)));
   }
-  const double scale = 2 * M_PI / total_angle;
+  const double total_angle = std::accumulate(angle.begin(), angle.end(), 0.0);
+  const double largest = *std::max_element(angle.begin(), angle.end());
+  const double polar_scale = 2 * M_PI / total_angle;
+  const double scale = polar_scale * largest < M_PI ? polar_scale : 1.0;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for(const auto& [p, q] : fan) {  // each ring vertex is p of one face and q of another
-    const Eigen::Vector3d a = input[p] - input[u], b = input[q] - input[u];
-    const double half_tangent = std::tan(0.5 * scale * std::atan2(a.cross(b).norm(), a.dot(b)));
-    sum += half_tangent * (sphere[p] / a.norm() + sphere[q] / b.norm());
+  for(std::size_t k = 0; k < fan.size(); ++k) {  // each ring vertex is p of one face and q of another
+    const auto& [p, q] = fan[k];
+    const double half_tangent = std::tan(0.5 * scale * angle[k]);
+    sum += half_tangent * (sphere[p] / (input[p] - input[u]).norm() + sphere[q] / (input[q] - input[u]).norm());
   }
   return sum.normalized();
 }
