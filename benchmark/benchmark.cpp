@@ -12,7 +12,8 @@
 // "@sliversN" and "@needlesN" then add N nearly degenerate faces of each kind (mesh_defects.h).
 // "tube:capsuleL" and "tube:helixT" are long tubes built in code (synthetic_shapes.h),
 // "tube:cylinderN" a CAD-like cylinder of needles with fan caps, and
-// "iso:metaballsN", "iso:starfishN", "iso:cortexN" and "iso:latticeR" isosurfaces made by marching tetrahedra.
+// "iso:metaballsN", "iso:starfishN", "iso:cortexN", "iso:foldedN" and "iso:latticeR" isosurfaces made by
+// marching tetrahedra.
 //
 // Each run is done in a forked child process, so that its peak memory (ru_maxrss of the
 // child) belongs to that run alone; see README.md.
@@ -96,10 +97,11 @@ void usage(const char* program)
                "A MESH tube:capsuleL or tube:helixT is built: a straight tube L radii long, or a thin\n"
                "tube coiled T times (e.g. tube:helix4, 112k faces); tube:cylinderN is a cylinder with N\n"
                "vertices on each of five rings and fan caps, as CAD tessellations make it (needles).\n"
-               "A MESH iso:metaballsN, iso:starfishN, iso:cortexN or iso:latticeR is an isosurface by\n"
-               "marching tetrahedra: blobs, a ball with five thin arms or a ball folded by narrow creases,\n"
-               "on a grid of N cubes a side, or the sphere of squared radius R through points of the\n"
-               "integer grid (clusters of near-duplicate vertices).\n";
+               "A MESH iso:metaballsN, iso:starfishN, iso:cortexN, iso:foldedN or iso:latticeR is an\n"
+               "isosurface by marching tetrahedra: blobs, a ball with five thin arms, a ball folded by\n"
+               "narrow creases or by deeper ones that lean (not star-shaped), on a grid of N cubes a side,\n"
+               "or the sphere of squared radius R through points of the integer grid (clusters of\n"
+               "near-duplicate vertices).\n";
 }
 
 std::vector<std::string> split(const std::string& s, char separator)

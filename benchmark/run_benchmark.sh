@@ -81,9 +81,11 @@ tubes_corpus=(tube:capsule10 tube:capsule40 tube:capsule150 tube:helix1 tube:hel
 # Isosurfaces of scans and segmentations (marching cubes or tetrahedra): clusters of
 # near-coincident vertices where the surface passes close to a grid point, tiny faces and
 # needles around them (see synthetic_shapes.h); the starfish's thin arms are protrusions too,
-# the cortex's narrow creases a brain-like surface. 17k to 219k faces.
+# the cortex's narrow creases a brain-like surface, the folded cortex's deeper, leaning folds
+# one that is not star-shaped. 17k to 252k faces.
 isosurfaces_corpus=(iso:lattice150 iso:lattice300 iso:metaballs60 iso:metaballs100 iso:metaballs130 iso:metaballs180
-                    iso:starfish60 iso:starfish100 iso:starfish150 iso:cortex60 iso:cortex100)
+                    iso:starfish60 iso:starfish100 iso:starfish150 iso:cortex60 iso:cortex100 iso:folded80
+                    iso:folded110)
 repeats=""  # the benchmark's default: 3, or 1 above 200k faces
 if [ "$large" = 1 ]; then
   corpus=("${large_corpus[@]}")

@@ -546,6 +546,10 @@ void test_irregular_shapes()
   test_irregular(synthetic_shapes::metaballs<Point>(40), "by marching tetrahedra", "blobs");
   test_irregular(synthetic_shapes::starfish<Point>(60), "by marching tetrahedra", "starfish", true);
   test_irregular(synthetic_shapes::starfish<Point>(65), "by marching tetrahedra", "starfish", true);
+  // Deep folds that lean, as a brain's: one of this grid's fans is flat-folded (a corner of
+  // half its total angle), whose mean value point the polar map's scaled angles would put
+  // opposite its ring, and no valid map would follow.
+  test_irregular(synthetic_shapes::folded_cortex<Point>(80), "by marching tetrahedra", "folded cortex");
   std::cerr << "time irregular shapes: " << seconds_since(start) << " s" << std::endl;
 }
 
