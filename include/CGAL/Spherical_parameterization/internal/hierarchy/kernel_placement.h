@@ -15,7 +15,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <vector>
 
 namespace CGAL {
@@ -82,20 +81,21 @@ inline bool convex_polygon_centroid(const std::vector<Eigen::Vector2d>& normals,
 /// opposite its ring. Such a fan keeps its own angles, each a triangle's corner, under `pi`.
 inline Eigen::Vector3d mean_value_point(int u, const Points& input, const Points& sphere, const Fan& fan)
 {
-  std::vector<double> angle;
-  angle.reserve(fan.size());
-  for(const auto& [p, q] : fan) {
+  auto corner_angle = [&](int p, int q) {
     const Eigen::Vector3d a = input[p] - input[u], b = input[q] - input[u];
-    angle.push_back(std::atan2(a.cross(b).norm(), a.dot(b)));
+    return std::atan2(a.cross(b).norm(), a.dot(b));
+  };
+  double total_angle = 0, largest = 0;
+  for(const auto& [p, q] : fan) {
+    const double angle = corner_angle(p, q);
+    total_angle += angle;
+    largest = std::max(largest, angle);
   }
-  const double total_angle = std::accumulate(angle.begin(), angle.end(), 0.0);
-  const double largest = *std::max_element(angle.begin(), angle.end());
   const double polar_scale = 2 * M_PI / total_angle;
   const double scale = polar_scale * largest < M_PI ? polar_scale : 1.0;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for(std::size_t k = 0; k < fan.size(); ++k) {  // each ring vertex is p of one face and q of another
-    const auto& [p, q] = fan[k];
-    const double half_tangent = std::tan(0.5 * scale * angle[k]);
+  for(const auto& [p, q] : fan) {  // each ring vertex is p of one face and q of another
+    const double half_tangent = std::tan(0.5 * scale * corner_angle(p, q));
     sum += half_tangent * (sphere[p] / (input[p] - input[u]).norm() + sphere[q] / (input[q] - input[u]).norm());
   }
   return sum.normalized();
