@@ -264,44 +264,44 @@ CGAL::Surface_mesh<Point> starfish(int resolution)
   return marching_tetrahedra<Point>(field, resolution, Vec{-1.1, -1.1, -1.1}, 2.2 / resolution);
 }
 
-/// A ball with deep narrow folds, like a brain's cortex (medical imaging's genus-0 surfaces):
-/// the radius in each direction d is 0.7 + 0.1 sqrt(s^2 + 1) with s = sin 9 d_x + sin 9 d_y +
-/// sin 9 d_z, so the valleys (where s is 0) form one connected network of narrow creases,
-/// 0.22 deep, their bottoms rounded over about 0.07 (a sharp V left bubbles of air in the
-/// marching tetrahedra's creases). Star-shaped, hence one closed genus-0 surface; by
-/// `marching_tetrahedra()` on a grid of `resolution` cubes a side in [-1.1, 1.1]^3.
-template <class Point>
-CGAL::Surface_mesh<Point> cortex(int resolution)
+/// A ball creased by one connected network of valleys, `marching_tetrahedra()` of it on a grid
+/// of `resolution` cubes a side in [-1.1, 1.1]^3: at distance r from the centre, the surface
+/// point in direction d has radius `radius(s)`, with s = sin 9 e_x + sin 9 e_y + sin 9 e_z for
+/// e the direction d turned about the z axis by `turn_rate (r - 0.7)` radians (the valleys
+/// are where s is 0). Without a turn the ball is star-shaped; with one, its folds lean.
+template <class Point, class Radius>
+CGAL::Surface_mesh<Point> creased_ball(int resolution, double turn_rate, const Radius& radius)
 {
-  auto field = [](const Vec& p) {
-    const double r = std::sqrt(dot(p, p));
+  auto field = [turn_rate, &radius](const Vec& q) {
+    const double r = std::sqrt(dot(q, q));
     if(r < 1e-9)
       return 1.0;
+    const double turn = turn_rate * (r - 0.7), c = std::cos(turn), t = std::sin(turn);
+    const Vec p{c * q[0] - t * q[1], t * q[0] + c * q[1], q[2]};
     const double s = std::sin(9 * p[0] / r) + std::sin(9 * p[1] / r) + std::sin(9 * p[2] / r);
-    return 0.7 + 0.1 * std::sqrt(s * s + 1) - r - 1e-7 * std::sqrt(2.0);  // the level off the grid's values
+    return radius(s) - r - 1e-7 * std::sqrt(2.0);  // the level off the grid's values
   };
   return marching_tetrahedra<Point>(field, resolution, Vec{-1.1, -1.1, -1.1}, 2.2 / resolution);
 }
 
-/// A cortex with folds about 0.3 deep, a third of the radius, that lean sideways: each
-/// direction is turned about the z axis by 1.5 (r - 0.7) radians before the folds' pattern is
-/// read, so a ray from the centre crosses a fold's wall more than once, as in a real brain's
-/// overhanging gyri (the surface is not star-shaped). The radius in the turned direction d is
-/// 0.6 + 0.35 sqrt(s^2 + 0.1) / 3, s as in `cortex()`; by `marching_tetrahedra()` on a grid of
-/// `resolution` cubes a side.
+/// A ball with deep narrow folds, like a brain's cortex (medical imaging's genus-0 surfaces),
+/// `creased_ball()` without a turn: radius 0.7 + 0.1 sqrt(s^2 + 1), so the creases are 0.22
+/// deep, their bottoms rounded over about 0.07 (a sharp V left bubbles of air in the marching
+/// tetrahedra's creases). Star-shaped, hence one closed genus-0 surface.
+template <class Point>
+CGAL::Surface_mesh<Point> cortex(int resolution)
+{
+  return creased_ball<Point>(resolution, 0, [](double s) { return 0.7 + 0.1 * std::sqrt(s * s + 1); });
+}
+
+/// A cortex with folds about 0.3 deep, a third of the radius, that lean sideways:
+/// `creased_ball()` with radius 0.6 + 0.35 sqrt(s^2 + 0.1) / 3, its directions turned by 1.5
+/// (r - 0.7) radians, so a ray from the centre crosses a fold's wall more than once, as in a
+/// real brain's overhanging gyri (the surface is not star-shaped).
 template <class Point>
 CGAL::Surface_mesh<Point> folded_cortex(int resolution)
 {
-  auto field = [](const Vec& q) {
-    const double r = std::sqrt(dot(q, q));
-    if(r < 1e-9)
-      return 1.0;
-    const double turn = 1.5 * (r - 0.7), c = std::cos(turn), t = std::sin(turn);
-    const Vec p{c * q[0] - t * q[1], t * q[0] + c * q[1], q[2]};
-    const double s = std::sin(9 * p[0] / r) + std::sin(9 * p[1] / r) + std::sin(9 * p[2] / r);
-    return 0.6 + 0.35 * std::sqrt(s * s + 0.1) / 3 - r - 1e-7 * std::sqrt(2.0);  // the level off the grid's values
-  };
-  return marching_tetrahedra<Point>(field, resolution, Vec{-1.1, -1.1, -1.1}, 2.2 / resolution);
+  return creased_ball<Point>(resolution, 1.5, [](double s) { return 0.6 + 0.35 * std::sqrt(s * s + 0.1) / 3; });
 }
 
 /// The sphere of squared radius `squared_radius` (plus 1e-5) around a point of the integer
