@@ -276,6 +276,16 @@ public:
   /// The tangent basis of each vertex at the last iterate whose Hessian was assembled.
   const std::vector<Basis>& bases() const { return bases_; }
 
+  /// Forgets the shifts learnt by the minimizations so far, as for a first one: a map started
+  /// afresh does not inherit the shifts a stalled one grew to, which would stop its first
+  /// iteration at a negligible step.
+  void forget_shifts()
+  {
+    mu_exact_ = mu_projected_ = 0;
+    exact_pause_ = 0;
+    shift_raised_ = false;
+  }
+
   /// Frees the matrix and the per-face buffers, keeping the last factor and `bases()`: after
   /// this the solver can only `solve_with_last_factor()`. The level kept for the input's
   /// two-grid cycle would otherwise hold them until the input's first step.

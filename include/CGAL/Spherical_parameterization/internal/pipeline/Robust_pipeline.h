@@ -123,12 +123,12 @@ public:
       input_solver.wait();
       if(!coarse_start(input_, x))
         return false;
-      robust_stages(input_, x, input_role(), options_);
+      robust_stages(input_, x, input_role(), options_, false);  // a restart would be this start again
       return true;
     }
     x.assign(n, Eigen::Vector3d::Zero());
-    Level_outcome outcome =
-      robust_stages(*coarse, level_x, {coarse->number_of_vertices(), false, levels.last_before_input(), false}, options_);
+    Level_outcome outcome = robust_stages(
+      *coarse, level_x, {coarse->number_of_vertices(), false, levels.last_before_input(), false}, options_, false);
     coarse->scatter(level_x, x);
     while(levels.refine(x)) {
       if(!outcome.uninterrupted)
@@ -155,14 +155,25 @@ private:
 
   // From a start of degree 1: Tutte with the d_min barrier while faces are folded (fold-free
   // on most meshes), untangling if that is not enough, then the chosen energy without ever
-  // letting a face flip. With no fold-free map, the chosen energy plainly.
-  Level_outcome robust_stages(Level& level, Points& x, const Level_role& role, const Newton_options& options)
+  // letting a face flip. A start that stays folded may hold a face at the hemisphere barrier,
+  // where every step is rejected: with `may_restart`, the level starts once more from its own
+  // central projection. With no fold-free map, the chosen energy plainly.
+  Level_outcome robust_stages(Level& level, Points& x, const Level_role& role, const Newton_options& options,
+                              bool may_restart = true)
   {
     const Level_outcome interrupted{false, role.previous_rejected};
     if(level.has_fold(x) && !tutte_stage(level, x, role, options))
       return interrupted;
     if(level.has_fold(x) && !untangle(level, x, role, options, settings_.untangling_rounds, Stage::UNTANGLING))
       return interrupted;
+    if(level.has_fold(x) && may_restart) {
+      Points restart;
+      if(coarse_start(level, restart)) {
+        x = std::move(restart);
+        level.solver->forget_shifts();
+        return robust_stages(level, x, role, options, false);
+      }
+    }
     if(level.has_fold(x)) {
       minimize(energy_, Stage::PLAIN, role, level, x, options);
       return {!log_.interrupted(), true};
