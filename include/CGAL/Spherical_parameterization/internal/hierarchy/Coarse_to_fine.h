@@ -111,7 +111,7 @@ class Coarse_to_fine
 public:
   /// `two_grid`: keep the last level before the input for `coarse_correction()`.
   Coarse_to_fine(const Triangle_soup& input, const Progressive_mesh& pm, double ratio, bool two_grid = false)
-    : input_(&input), refinement_(pm), two_grid_(two_grid)
+    : input_(&input), refinement_(pm), topology_ahead_(pm), two_grid_(two_grid)
   {
     for(double size = double(refinement_.number_of_vertices()) * ratio; size * std::sqrt(ratio) < double(input.number_of_vertices());
         size *= ratio)
@@ -217,15 +217,52 @@ public:
 
 
 private:
+  // The current level: the one prepared while the level before ran, if any; then the next
+  // level's preparation starts.
   void make_level()
   {
-    level_ = std::make_unique<Level<Newton>>();
-    level_->soup = level_soup(*input_, refinement_, level_->to_input);
-    level_->solver = std::make_unique<Newton>(level_->soup);
+    if(preparing_) {
+      preparing_->wait();
+      preparing_.reset();
+    }
+    if(prepared_ && prepared_->number_of_vertices() == refinement_.number_of_vertices())
+      level_ = std::move(prepared_);
+    else
+      level_ = new_level(refinement_);
+    prepare_next_level();
+  }
+
+  // With `CGAL::Parallel_tag`, the next coarser level (the input's solver is the pipeline's
+  // to prepare) is made as a background task while the current one runs: its faces come from
+  // the same splits made on a second copy of the mesh, which needs no placements, and its
+  // solver's analysis and first factorization's memory (fresh memory costs a page fault per
+  // page) are ready when the level starts.
+  void prepare_next_level()
+  {
+    if constexpr(is_parallel<ConcurrencyTag>) {
+      if(next_size_ + 1 >= sizes_.size())
+        return;
+      const std::size_t size = sizes_[next_size_];
+      preparing_ = std::make_unique<Background_task<ConcurrencyTag>>([this, size] {
+        while(topology_ahead_.number_of_vertices() < size)
+          topology_ahead_.split_next();
+        prepared_ = new_level(topology_ahead_);
+        prepared_->solver->prepare_memory();
+      });
+    }
+  }
+
+  std::unique_ptr<Level<Newton>> new_level(const Refinement& refinement) const
+  {
+    auto level = std::make_unique<Level<Newton>>();
+    level->soup = level_soup(*input_, refinement, level->to_input);
+    level->solver = std::make_unique<Newton>(level->soup);
+    return level;
   }
 
   const Triangle_soup* input_;
   Refinement refinement_;
+  Refinement topology_ahead_;  // the mesh of the level under preparation, see prepare_next_level()
   bool two_grid_;
   std::vector<std::size_t> sizes_;  // of the levels after the coarsest, the input's last
   std::size_t next_size_ = 0;
@@ -233,6 +270,8 @@ private:
   Split_rings split_rings_;  // of the splits from the last level to the input
   std::vector<Fan> fans_;    // of a batch of independent splits, see refine()
   std::vector<int> removed_;
+  std::unique_ptr<Level<Newton>> prepared_;
+  std::unique_ptr<Background_task<ConcurrencyTag>> preparing_;  // last: waited for before the rest goes
 };
 
 } // namespace internal
