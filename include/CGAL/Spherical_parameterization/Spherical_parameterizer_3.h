@@ -13,7 +13,6 @@
 #include <CGAL/Spherical_parameterization/Weighted_sum_energy.h>
 #include <CGAL/Spherical_parameterization/named_parameters.h>
 #include <CGAL/Spherical_parameterization/internal/energies/Spherical_energy.h>
-#include <CGAL/Spherical_parameterization/internal/energies/area_barrier.h>
 #include <CGAL/Spherical_parameterization/internal/hierarchy/Level.h>
 #include <CGAL/Spherical_parameterization/internal/hierarchy/Progressive_mesh.h>
 #include <CGAL/Spherical_parameterization/internal/input/Triangle_soup.h>
@@ -86,14 +85,6 @@ public:
   /// The energy.
   const Energy& energy() const { return energy_; }
 
-  /// The tolerance `solve()` uses unless given one: 1e-5 for an energy with an area barrier
-  /// (a term that grows without bound as a face shrinks, as the default energy's), 1e-6
-  /// otherwise. The Hessian of an area barrier is indefinite in every compressed face up to
-  /// the minimum, so its minimization ends in a linear tail whose last steps gain a few
-  /// millionths of the energy each and leave the map's distortion as it was; the paper's
-  /// energies end quadratically, where a tighter tolerance costs an iteration or two.
-  double default_tolerance() const { return internal::has_area_barrier(energy_) ? 1e-5 : 1e-6; }
-
   /// Checks the mesh and stores it as arrays. What else depends on the mesh only (the
   /// solver's symbolic factorization, the coarse-to-fine hierarchy) is made by the first
   /// `solve()` and kept for the next ones.
@@ -144,8 +135,7 @@ public:
   ///     the paper pipeline takes it as it is \cgalParamNEnd
   ///   \cgalParamNBegin{d_min_correction} default `true` \cgalParamNEnd
   ///   \cgalParamNBegin{number_of_iterations} cap on Newton iterations per stage; default 200 \cgalParamNEnd
-  ///   \cgalParamNBegin{tolerance} relative energy decrease at which to stop; default
-  ///     `default_tolerance()` \cgalParamNEnd
+  ///   \cgalParamNBegin{tolerance} relative energy decrease at which to stop; default 1e-6 \cgalParamNEnd
   ///   \cgalParamNBegin{maximum_running_time} seconds; default unlimited \cgalParamNEnd
   ///   \cgalParamNBegin{visitor} called after each iteration with a `Progress`; returns
   ///     `false` to cancel \cgalParamNEnd
@@ -168,7 +158,7 @@ public:
       options.deadline = options.start + std::chrono::duration_cast<internal::Clock::duration>(
                                            std::chrono::duration<double>(max_seconds));
     const long long max_iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 200);
-    options.tolerance = choose_parameter(get_parameter(np, internal_np::tolerance_t()), default_tolerance());
+    options.tolerance = choose_parameter(get_parameter(np, internal_np::tolerance_t()), 1e-6);
     const bool correction = choose_parameter(get_parameter(np, internal_np::d_min_correction_t()), true);
     const Pipeline pipeline = choose_parameter(get_parameter(np, internal_np::pipeline_t()), Pipeline::ROBUST);
     if(!(options.tolerance >= 0) || max_iterations <= 0 || !(max_seconds >= 0)) {
