@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace CGAL {
@@ -111,7 +112,7 @@ class Coarse_to_fine
 public:
   /// `two_grid`: keep the last level before the input for `coarse_correction()`.
   Coarse_to_fine(const Triangle_soup& input, const Progressive_mesh& pm, double ratio, bool two_grid = false)
-    : input_(&input), refinement_(pm), topology_ahead_(pm), two_grid_(two_grid)
+    : input_(&input), refinement_(pm), two_grid_(two_grid)
   {
     for(double size = double(refinement_.number_of_vertices()) * ratio; size * std::sqrt(ratio) < double(input.number_of_vertices());
         size *= ratio)
@@ -242,11 +243,13 @@ private:
     if constexpr(is_parallel<ConcurrencyTag>) {
       if(next_size_ + 1 >= sizes_.size())
         return;
+      if(!topology_ahead_)
+        topology_ahead_.emplace(refinement_);  // copied on first use only: sequential builds never need it
       const std::size_t size = sizes_[next_size_];
       preparing_ = std::make_unique<Background_task<ConcurrencyTag>>([this, size] {
-        while(topology_ahead_.number_of_vertices() < size)
-          topology_ahead_.split_next();
-        prepared_ = new_level(topology_ahead_);
+        while(topology_ahead_->number_of_vertices() < size)
+          topology_ahead_->split_next();
+        prepared_ = new_level(*topology_ahead_);
         prepared_->solver->prepare_memory();
       });
     }
@@ -262,7 +265,7 @@ private:
 
   const Triangle_soup* input_;
   Refinement refinement_;
-  Refinement topology_ahead_;  // the mesh of the level under preparation, see prepare_next_level()
+  std::optional<Refinement> topology_ahead_;  // the mesh of the level under preparation, see prepare_next_level()
   bool two_grid_;
   std::vector<std::size_t> sizes_;  // of the levels after the coarsest, the input's last
   std::size_t next_size_ = 0;
