@@ -119,9 +119,9 @@ public:
 
     Points level_x;
     Level* coarse = levels.level();
-    if(!coarse || !coarse_start(*coarse, level_x)) {  // the input itself, from its own projection
+    if(!coarse || !central_start(*coarse, level_x)) {  // the input itself, from its own projection
       input_solver.wait();
-      if(!coarse_start(input_, x))
+      if(!central_start(input_, x))
         return false;
       robust_stages(input_, x, input_role(), options_, false);  // a restart would be this start again
       return true;
@@ -168,7 +168,7 @@ private:
       return interrupted;
     if(level.has_fold(x) && may_restart) {
       Points restart;
-      if(coarse_start(level, restart)) {
+      if(central_start(level, restart)) {
         x = std::move(restart);
         level.solver->forget_shifts();
         return robust_stages(level, x, role, options, false);
@@ -447,8 +447,9 @@ private:
     return double(level.solver->faces_under_floor(x, floor).size()) <= few;
   }
 
-  // The central projection of `level` about a point inside it, if of degree 1.
-  static bool coarse_start(const Level& level, Points& x)
+  // The central projection of `level` about a point inside it, if of degree 1: the start of
+  // the coarsest level, and of a level restarted by `robust_stages()`.
+  static bool central_start(const Level& level, Points& x)
   {
     const std::optional<Eigen::Vector3d> center = interior_center(level.soup);
     std::optional<Points> start;
