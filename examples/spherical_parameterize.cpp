@@ -84,7 +84,8 @@ struct Options
 
 const char* usage =
   "usage: spherical_parameterize [INPUT [OUTPUT]]\n"
-  "         [--energy balanced|tutte|dirichlet|area|stretch|mips|combined|area_distortion]\n"
+  "         [--energy balanced|tutte|dirichlet|area|stretch|mips|combined|area_distortion|\n"
+  "                   inverse_dirichlet|symmetric_dirichlet]\n"
   "         [--area-preservation T] [--weights A [B]] [--pipeline robust|paper] [--init central|FILE]\n"
   "         [--max-iterations N]\n"
   "         [--time-limit SECONDS] [--no-correction] [--triangulate] [--orient] [--quiet]\n"
@@ -95,7 +96,8 @@ const char* usage =
   "  --area-preservation T          the balanced energy's knob, from 0 (conformal) to 1 (equal-area);\n"
   "                                 default 0.25, the least that keeps protrusions for a resampling\n"
   "  --weights A [B]                the energy's weights instead (balanced and combined: A on the\n"
-  "                                 angles, B on the areas)\n"
+  "                                 angles, B on the areas; symmetric_dirichlet: A on the map's\n"
+  "                                 Dirichlet energy, B on its inverse's)\n"
   "  --triangulate                  split the input's polygons into triangles\n"
   "  --orient                       read a soup whose faces are not consistently oriented (CGAL's\n"
   "                                 orient_polygon_soup); OUTPUT then has the reoriented faces, and\n"

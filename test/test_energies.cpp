@@ -13,6 +13,7 @@
 #include <CGAL/Spherical_parameterization/Chord_triangle.h>
 #include <CGAL/Spherical_parameterization/Dirichlet_energy.h>
 #include <CGAL/Spherical_parameterization/Energy_mix.h>
+#include <CGAL/Spherical_parameterization/Symmetric_dirichlet_energy.h>
 #include <CGAL/Spherical_parameterization/MIPS_energy.h>
 #include <CGAL/Spherical_parameterization/Reference_triangle.h>
 #include <CGAL/Spherical_parameterization/Stretch_energy.h>
@@ -261,9 +262,39 @@ void test_area_distortion_minimum()
   report("area distortion of a flipped face is infinite", std::isinf(value(lo, true)));
 }
 
+// The inverse Dirichlet term of one face mapped by a known linear stretch: the chord triangle
+// of (p, p + sx u, p + sy v) pulled back to the plane is the input right triangle scaled by
+// (sx, sy) up to the chord's curvature, so the term is near InputArea (1/sx^2 + 1/sy^2);
+// it is infinite once the face flips and grows as one direction alone is squeezed.
+void test_inverse_dirichlet_stretch()
+{
+  const double h = 1e-3;  // small, so the chord triangle is nearly the tangent one
+  const SP::Reference_triangle input(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(h, 0, 0), Eigen::Vector3d(0, h, 0));
+  const SP::Inverse_dirichlet_energy energy;
+  const auto data = energy.face_data(input);
+  const Eigen::Vector3d p(0, 0, 1), u(1, 0, 0), v(0, 1, 0);
+  auto value = [&](double sx, double sy, bool flipped) {
+    const Eigen::Vector3d a = p, b = (p + sx * h * u).normalized(), c = (p + sy * h * v).normalized();
+    return flipped ? energy.flat_energy(SP::Chord_triangle<double>(a, c, b), data)
+                   : energy.flat_energy(SP::Chord_triangle<double>(a, b, c), data);
+  };
+  double worst = 0;
+  for(double sx : {0.5, 1.0, 3.0})
+    for(double sy : {0.2, 1.0, 2.0}) {
+      const double expected = input.area * (1 / (sx * sx) + 1 / (sy * sy));
+      worst = std::max(worst, std::abs(value(sx, sy, false) / expected - 1));
+    }
+  report("inverse Dirichlet of a face stretched by (sx, sy) is InputArea (1/sx^2 + 1/sy^2) (rel 1e-5)",
+         worst <= 1e-5, "rel. err. " + str(worst));
+  report("inverse Dirichlet grows as one direction alone is squeezed, the area kept",
+         value(4, 0.25, false) > 4 * value(1, 1, false));
+  report("inverse Dirichlet of a flipped face is infinite", std::isinf(value(1, 1, true)));
+}
+
 void test_energies()
 {
   test_area_distortion_minimum();
+  test_inverse_dirichlet_stretch();
   check_energy("Tutte", SP::Tutte_energy());
   check_energy("Dirichlet", SP::Dirichlet_energy());
   check_energy("Area", SP::Area_energy());
@@ -272,7 +303,10 @@ void test_energies()
   check_energy("combined(1,1)", SP::combined_energy(1, 1));
   check_energy("Area_distortion", SP::Area_distortion_energy());
   check_energy("balanced()", SP::balanced_energy());
-  for(const char* name : {"tutte", "dirichlet", "area", "stretch", "mips", "combined", "area_distortion", "balanced"}) {
+  check_energy("Inverse_dirichlet", SP::Inverse_dirichlet_energy());
+  check_energy("symmetric_dirichlet()", SP::symmetric_dirichlet_energy());
+  for(const char* name : {"tutte", "dirichlet", "area", "stretch", "mips", "combined", "area_distortion", "balanced",
+                          "inverse_dirichlet", "symmetric_dirichlet"}) {
     const std::optional<SP::Energy_mix> mix = SP::energy_by_name(name, 1.5, 0.5);
     report(std::string("energy_by_name knows \"") + name + "\"", bool(mix));
     if(mix)

@@ -15,6 +15,7 @@
 // After the mesh headers (see test_parameterizer.cpp).
 #include <CGAL/spherical_parameterize.h>
 #include <CGAL/Spherical_parameterization/Spherical_parameterizer_3.h>
+#include <CGAL/Spherical_parameterization/Symmetric_dirichlet_energy.h>
 #include <CGAL/Spherical_parameterization/measure_distortion.h>
 
 #include "test_support.h"
@@ -560,6 +561,30 @@ void test_cad_cylinder(const Energy& energy, const std::string& energy_name, dou
          d.quasi_conformal.mean < max_mean_quasi_conformal, "mean " + str(d.quasi_conformal.mean));
 }
 
+/// The coiled tube of `test_irregular_shapes()` under the symmetric Dirichlet energy: valid,
+/// and its inverse term, which sees how much a face is squeezed in each direction where the
+/// default's area term sees only its area, leaves the tube's faces rounder and closer to their
+/// area share than the default energy does.
+void test_symmetric_dirichlet_on_tube()
+{
+  Mesh mesh = synthetic_shapes::helix<Point>(0.5);
+  const std::string name = "[thin tube coiled half a turn, " + std::to_string(mesh.number_of_faces()) + " faces]";
+  Point_map balanced = new_map(mesh, "v:tube_balanced"), symmetric = new_map(mesh, "v:tube_symmetric");
+  const SP::Result rb = CGAL::spherical_parameterize(mesh, balanced);
+  const SP::Result rs = CGAL::spherical_parameterize(
+    mesh, symmetric, SP::parameters::energy(SP::symmetric_dirichlet_energy(0.3)));
+  const SP::Distortion_report db = SP::measure_distortion(mesh, balanced), ds = SP::measure_distortion(mesh, symmetric);
+  std::cerr << name << ": default " << describe(db) << "; symmetric Dirichlet (0.3) " << describe(ds) << std::endl;
+  report(name + ": symmetric Dirichlet (0.3) gives a valid map", rs.status == SP::Error_code::OK && rs.valid && ds.is_valid(),
+         describe(rs));
+  report(name + ": rounder faces than the default's (mean quasi-conformal ratio under 0.9 times)",
+         rb.valid && ds.quasi_conformal.mean < 0.9 * db.quasi_conformal.mean,
+         str(ds.quasi_conformal.mean) + " against " + str(db.quasi_conformal.mean));
+  report(name + ": areas closer to their share than the default's (mean |log area ratio| under 0.6 times)",
+         rb.valid && ds.log_area_ratio.mean < 0.6 * db.log_area_ratio.mean,
+         str(ds.log_area_ratio.mean) + " against " + str(db.log_area_ratio.mean));
+}
+
 /// Irregular inputs: stretching makes protrusions, jitter makes skinny triangles, slivers and
 /// near-duplicate vertices make nearly degenerate faces, isosurfaces all of these; all valid.
 void test_irregular_shapes()
@@ -629,6 +654,7 @@ int main(int argc, char** argv)
   if(irregular) {
     test_irregular_shapes();
     test_coarse_level_untangled();
+    test_symmetric_dirichlet_on_tube();
   } else {
     test_determinism();
     const auto interruptions = std::chrono::steady_clock::now();

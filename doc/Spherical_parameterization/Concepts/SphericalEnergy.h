@@ -41,6 +41,7 @@ balanced energy).
 \cgalHasModel `CGAL::Spherical_parameterization::Stretch_energy`
 \cgalHasModel `CGAL::Spherical_parameterization::MIPS_energy`
 \cgalHasModel `CGAL::Spherical_parameterization::Area_distortion_energy`
+\cgalHasModel `CGAL::Spherical_parameterization::Inverse_dirichlet_energy`
 \cgalHasModel `CGAL::Spherical_parameterization::Weighted_sum`
 
 \sa \ref SPCustomEnergy in the User Manual, and the example \ref custom_energy.cpp.

@@ -19,7 +19,7 @@ namespace Spherical_parameterization {
 /// The default energy, `(1 - t) Dirichlet + t Area_distortion`: one knob `t`, the area
 /// preservation, from conformal (`t = 0`) to equal-area (`t = 1`). The Dirichlet term takes
 /// the exact cotangents of the input (`Dirichlet_energy{0, M_PI}`, the discrete conformal
-/// energy `InputArea |J|_F^2 / 2`); the area term keeps every face's area away from zero
+/// energy `InputArea |J|_F^2`); the area term keeps every face's area away from zero
 /// (`Area_distortion_energy`), so that no protrusion is squeezed out of the map.
 /// \cgalModels `SphericalEnergy`
 using Balanced_energy = Weighted_sum<Dirichlet_energy, Area_distortion_energy>;
