@@ -631,20 +631,21 @@ const char* status_name(int status, bool ran)
   return "UNKNOWN";
 }
 
-void print_header()
+// The energy column fits the longest energy of the run ("symmetric_dirichlet:0.7:0.3").
+void print_header(int energy_width)
 {
-  std::printf("%-18s %8s %-9s %9s %9s %8s %5s %11s %-5s %5s %5s %7s %8s %8s %8s %9s %8s %7s %7s %8s %8s  %s\n",
-              "mesh", "faces", "energy", "time_s", "chol_s", "ratio", "iters", "energy_val", "valid", "flip", "degen",
+  std::printf("%-18s %8s %-*s %9s %9s %8s %5s %11s %-5s %5s %5s %7s %8s %8s %8s %9s %8s %7s %7s %8s %8s  %s\n",
+              "mesh", "faces", energy_width, "energy", "time_s", "chol_s", "ratio", "iters", "energy_val", "valid", "flip", "degen",
               "degree", "qc_mean", "qc_p95", "logA", "minA", "L2str", "rsMean%", "rsMax%", "peak_MB", "dpeakMB",
               "status / stages");
 }
 
-void print_row(const Row& r)
+void print_row(const Row& r, int energy_width)
 {
   const Run_record& x = r.run;
-  std::printf("%-18s %8zu %-9s %9.3f %9.4f %8.1f %5zu %11.5g %-5s %5zu %5zu %7.4f %8.3f %8.3f %8.3f %9.2e %8.2f "
+  std::printf("%-18s %8zu %-*s %9.3f %9.4f %8.1f %5zu %11.5g %-5s %5zu %5zu %7.4f %8.3f %8.3f %8.3f %9.2e %8.2f "
               "%7.3f %7.2f %8.1f %8.1f  %s %s\n",
-              r.mesh.c_str(), r.faces, r.energy.c_str(), r.time, r.yardstick,
+              r.mesh.c_str(), r.faces, energy_width, r.energy.c_str(), r.time, r.yardstick,
               r.yardstick > 0 ? r.time / r.yardstick : 0.0, x.iterations, x.energy, x.valid ? "yes" : "NO",
               x.flipped, x.degenerate, x.degree, x.qc_mean, x.qc_p95, x.log_area_mean, x.min_area_ratio,
               x.l2_stretch, 100 * x.resampling_mean, 100 * x.resampling_max, r.peak_rss_kb / 1024.0,
@@ -777,7 +778,10 @@ int main(int argc, char** argv)
                                   : "in process (ru_maxrss is process-wide; dpeak = statm after - before)")
             << "; pipeline: " << options.pipeline << '\n';
   std::cout << "# process tuning: " << tuning << '\n';
-  print_header();
+  int energy_width = 9;
+  for(const std::string& e : options.energies)
+    energy_width = std::max(energy_width, int(e.size()));
+  print_header(energy_width);
 
   std::vector<Row> rows;
   bool failures = false;
@@ -869,7 +873,7 @@ int main(int argc, char** argv)
         std::cerr << row.mesh << " / " << energy_name << ": the solver says the map is "
                   << (row.run.solver_valid ? "valid" : "invalid") << ", measure_distortion says "
                   << (row.run.valid ? "valid" : "invalid") << '\n';
-      print_row(row);
+      print_row(row, energy_width);
       rows.push_back(row);
     }
   }
