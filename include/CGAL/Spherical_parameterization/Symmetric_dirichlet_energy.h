@@ -20,7 +20,8 @@ namespace Spherical_parameterization {
 /// `InputArea ((1 - w) |J|_F^2 + w |J^-1|_F^2)`. `w = 0` is the conformal energy, `w = 1/2`
 /// half the symmetric Dirichlet energy (Schreiner et al. 2004, Smith and Schaefer 2015). The
 /// inverse term is a barrier at zero area that also keeps a face from being squeezed in one
-/// direction, so this family keeps thin protrusions sampled around and along them.
+/// direction, so this family keeps long tubes sampled around and along them (the user
+/// manual compares it with the default).
 /// \cgalModels `SphericalEnergy`
 using Symmetric_dirichlet_energy = Weighted_sum<Dirichlet_energy, Inverse_dirichlet_energy>;
 
