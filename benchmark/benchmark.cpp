@@ -97,11 +97,11 @@ void usage(const char* program)
                "A MESH tube:capsuleL or tube:helixT is built: a straight tube L radii long, or a thin\n"
                "tube coiled T times (e.g. tube:helix4, 112k faces); tube:cylinderN is a cylinder with N\n"
                "vertices on each of five rings and fan caps, as CAD tessellations make it (needles).\n"
-               "A MESH iso:metaballsN, iso:starfishN, iso:cortexN, iso:foldedN or iso:latticeR is an\n"
-               "isosurface by marching tetrahedra: blobs, a ball with five thin arms, a ball folded by\n"
-               "narrow creases or by deeper ones that lean (not star-shaped), on a grid of N cubes a side,\n"
-               "or the sphere of squared radius R through points of the integer grid (clusters of\n"
-               "near-duplicate vertices).\n";
+               "A MESH iso:metaballsN, iso:starfishN, iso:cortexN, iso:foldedN, iso:figureN or\n"
+               "iso:latticeR is an isosurface by marching tetrahedra: blobs, a ball with five thin arms,\n"
+               "a ball folded by narrow creases or by deeper ones that lean (not star-shaped), a standing\n"
+               "figure with fingers, on a grid of N cubes a side, or the sphere of squared radius R\n"
+               "through points of the integer grid (clusters of near-duplicate vertices).\n";
 }
 
 std::vector<std::string> split(const std::string& s, char separator)

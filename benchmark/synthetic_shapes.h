@@ -304,6 +304,60 @@ CGAL::Surface_mesh<Point> folded_cortex(int resolution)
   return creased_ball<Point>(resolution, 1.5, [](double s) { return 0.6 + 0.35 * std::sqrt(s * s + 0.1) / 3; });
 }
 
+/// A segment from `a` to `b` thickened by `radius`: the field `radius - distance` is
+/// positive inside.
+struct Capsule
+{
+  Vec a, b;
+  double radius;
+
+  double inside(const Vec& p) const
+  {
+    const Vec ab{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, ap{p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+    const double t = std::clamp(dot(ap, ab) / dot(ab, ab), 0.0, 1.0);
+    const Vec off{ap[0] - t * ab[0], ap[1] - t * ab[1], ap[2] - t * ab[2]};
+    return radius - std::sqrt(dot(off, off));
+  }
+};
+
+/// A standing figure 2 high (a person as scans and segmentations give them): head, trunk,
+/// arms held out and down, legs, feet, and on each hand four fingers and a thumb of radius
+/// 0.014 and length 0.075 to 0.1, 0.012 apart at their bases; the union of capsules,
+/// `marching_tetrahedra()` of it on a grid of `resolution` cubes a side in [-1.1, 1.1]^3 (a
+/// finger is 4 cubes across at 300). Protrusions on protrusions: the fingertips get the
+/// smallest share of the sphere.
+template <class Point>
+CGAL::Surface_mesh<Point> figure(int resolution)
+{
+  constexpr double finger = 0.014;
+  std::vector<Capsule> parts{{Vec{0, -0.05, 0}, Vec{0, 0.33, 0}, 0.17},    // trunk
+                             {Vec{0, 0.45, 0}, Vec{0, 0.64, 0}, 0.06},     // neck
+                             {Vec{0, 0.73, 0.01}, Vec{0, 0.76, 0.01}, 0.11}};  // head
+  for(double side : {-1.0, 1.0}) {
+    parts.push_back({Vec{side * 0.09, -0.1, 0}, Vec{side * 0.11, -0.55, 0}, 0.075});  // thigh
+    parts.push_back({Vec{side * 0.11, -0.55, 0}, Vec{side * 0.11, -0.93, 0}, 0.055}); // shin
+    parts.push_back({Vec{side * 0.11, -0.96, -0.02}, Vec{side * 0.11, -0.96, 0.14}, 0.035});  // foot
+    parts.push_back({Vec{side * 0.2, 0.38, 0}, Vec{side * 0.47, 0.2, 0}, 0.05});      // upper arm
+    parts.push_back({Vec{side * 0.47, 0.2, 0}, Vec{side * 0.72, 0.05, 0}, 0.04});     // forearm
+    for(double z : {-0.025, 0.025})                                                     // palm
+      parts.push_back({Vec{side * 0.72, 0.05, z}, Vec{side * 0.8, 0.0, z}, 0.03});
+    for(int i = 0; i < 4; ++i) {
+      const double spread = 0.25 * (i - 1.5), length = (i == 1 || i == 2) ? 0.087 : 0.075;
+      const Vec base{side * 0.81, -0.005, (i - 1.5) * (2 * finger + 0.012)};
+      const Vec along = normalized(Vec{side * 0.86 * std::cos(spread), -0.5, std::sin(spread)});
+      parts.push_back({base, Vec{base[0] + length * along[0], base[1] + length * along[1], base[2] + length * along[2]}, finger});
+    }
+    parts.push_back({Vec{side * 0.74, 0.04, 0.045}, Vec{side * 0.79, 0.02, 0.11}, 1.15 * finger});  // thumb
+  }
+  auto field = [parts](const Vec& p) {
+    double largest = -1e9;
+    for(const Capsule& part : parts)
+      largest = std::max(largest, part.inside(p));
+    return largest - 1e-7 * std::sqrt(2.0);  // the level off the grid's values
+  };
+  return marching_tetrahedra<Point>(field, resolution, Vec{-1.1, -1.1, -1.1}, 2.2 / resolution);
+}
+
 /// The sphere of squared radius `squared_radius` (plus 1e-5) around a point of the integer
 /// grid, by `marching_tetrahedra()` on that grid: it passes 1e-5 away from every grid point
 /// on the sphere of that radius, so each of them is a cluster of near-coincident vertices.
@@ -316,12 +370,12 @@ CGAL::Surface_mesh<Point> lattice_sphere(double squared_radius)
 }
 
 /// The shape named `capsuleL`, `helixT`, `cylinderN`, `metaballsN`, `starfishN`, `cortexN`,
-/// `foldedN` or `latticeR` (positive numbers: length, turns, vertices around, grid resolution,
+/// `foldedN`, `figureN` or `latticeR` (positive numbers: length, turns, vertices around, grid resolution,
 /// squared radius), or nothing.
 template <class Point>
 std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
 {
-  for(const std::string kind : {"capsule", "helix", "cylinder", "metaballs", "starfish", "cortex", "folded", "lattice"}) {
+  for(const std::string kind : {"capsule", "helix", "cylinder", "metaballs", "starfish", "cortex", "folded", "figure", "lattice"}) {
     if(name.compare(0, kind.size(), kind) != 0)
       continue;
     const std::string number = name.substr(kind.size());
@@ -337,6 +391,7 @@ std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
     if(kind == "starfish") return starfish<Point>(int(value));
     if(kind == "cortex") return cortex<Point>(int(value));
     if(kind == "folded") return folded_cortex<Point>(int(value));
+    if(kind == "figure") return figure<Point>(int(value));
     return lattice_sphere<Point>(value);
   }
   return std::nullopt;
