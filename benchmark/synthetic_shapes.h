@@ -345,7 +345,8 @@ CGAL::Surface_mesh<Point> figure(int resolution)
       const double spread = 0.25 * (i - 1.5), length = (i == 1 || i == 2) ? 0.087 : 0.075;
       const Vec base{side * 0.81, -0.005, (i - 1.5) * (2 * finger + 0.012)};
       const Vec along = normalized(Vec{side * 0.86 * std::cos(spread), -0.5, std::sin(spread)});
-      parts.push_back({base, Vec{base[0] + length * along[0], base[1] + length * along[1], base[2] + length * along[2]}, finger});
+      const Vec tip{base[0] + length * along[0], base[1] + length * along[1], base[2] + length * along[2]};
+      parts.push_back({base, tip, finger});
     }
     parts.push_back({Vec{side * 0.74, 0.04, 0.045}, Vec{side * 0.79, 0.02, 0.11}, 1.15 * finger});  // thumb
   }
@@ -370,12 +371,13 @@ CGAL::Surface_mesh<Point> lattice_sphere(double squared_radius)
 }
 
 /// The shape named `capsuleL`, `helixT`, `cylinderN`, `metaballsN`, `starfishN`, `cortexN`,
-/// `foldedN`, `figureN` or `latticeR` (positive numbers: length, turns, vertices around, grid resolution,
-/// squared radius), or nothing.
+/// `foldedN`, `figureN` or `latticeR` (positive numbers: length, turns, vertices around, grid
+/// resolution, squared radius), or nothing.
 template <class Point>
 std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
 {
-  for(const std::string kind : {"capsule", "helix", "cylinder", "metaballs", "starfish", "cortex", "folded", "figure", "lattice"}) {
+  for(const std::string kind :
+      {"capsule", "helix", "cylinder", "metaballs", "starfish", "cortex", "folded", "figure", "lattice"}) {
     if(name.compare(0, kind.size(), kind) != 0)
       continue;
     const std::string number = name.substr(kind.size());
