@@ -24,6 +24,7 @@
 #include <CGAL/Spherical_parameterization/geometry_image.h>
 #include <CGAL/Spherical_parameterization/measure_distortion.h>
 #include <CGAL/Spherical_parameterization/remesh_on_icosphere.h>
+#include <CGAL/Spherical_parameterization/resampling_error.h>
 #include <CGAL/Spherical_parameterization/surface_map.h>
 #include <CGAL/Spherical_parameterization/texture_coordinates.h>
 
@@ -104,7 +105,8 @@ const char* usage =
   "                                 the vertices it had to duplicate at non-manifold points last\n"
   "Uses of the map (written only if the map is valid):\n"
   "  --remesh-icosphere LEVEL OUT   the surface resampled on a geodesic icosphere of subdivision LEVEL\n"
-  "                                 (0 to 9: 20 * 4^LEVEL faces); OUT .off or .obj\n"
+  "                                 (0 to 9: 20 * 4^LEVEL faces); OUT .off or .obj; prints the\n"
+  "                                 distance from the input's vertices and face centroids to it\n"
   "  --geometry-image N OUT         the surface sampled on an N x N octahedral grid (N odd, 3 to 4097);\n"
   "                                 OUT .pfm: the float image (x, y, z per pixel, bottom row first),\n"
   "                                 OUT .off or .obj: its closed mesh\n"
@@ -383,15 +385,21 @@ using Point_location = SP::Sphere_point_location<Mesh>;
 
 std::string extension(const std::string& path) { return std::filesystem::path(path).extension().string(); }
 
-void write_icosphere_remesh(const Options& o, const Point_location& location)
+// Writes the remesh and, unless quiet, how far the input's vertices and face centroids are
+// from it: what the resampling lost.
+void write_icosphere_remesh(const Options& o, const Mesh& mesh, const Point_location& location)
 {
   Mesh remeshed;
   if(!SP::remesh_on_icosphere(location, o.icosphere_level, remeshed))
     fail("the icosphere remesh is not a valid surface mesh");
   write_mesh(remeshed, o.icosphere_output);
-  if(!o.quiet)
-    std::cout << "icosphere remesh " << o.icosphere_output << ": level " << o.icosphere_level << ", "
-              << remeshed.number_of_vertices() << " vertices, " << remeshed.number_of_faces() << " faces\n";
+  if(o.quiet)
+    return;
+  const SP::Resampling_error error = SP::distance_to_resampled(mesh, remeshed);
+  std::cout << "icosphere remesh " << o.icosphere_output << ": level " << o.icosphere_level << ", "
+            << remeshed.number_of_vertices() << " vertices, " << remeshed.number_of_faces() << " faces\n"
+            << "                 distance to the input: mean " << 100 * error.mean << "%, max " << 100 * error.max
+            << "% of the bounding box diagonal\n";
 }
 
 void write_geometry_image(const Options& o, const Point_location& location)
@@ -511,7 +519,7 @@ void use_the_map(const Options& o, const Mesh& mesh, const Sphere_map& sphere)
     return;
   const Point_location location(mesh, sphere);
   if(!o.icosphere_output.empty())
-    write_icosphere_remesh(o, location);
+    write_icosphere_remesh(o, mesh, location);
   if(!o.image_output.empty())
     write_geometry_image(o, location);
 }

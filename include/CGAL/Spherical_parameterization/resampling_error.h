@@ -36,23 +36,23 @@ struct Resampling_error
 };
 
 /// \ingroup PkgSphericalParameterizationRef
-/// Resamples `tm` through the valid sphere map `sphere_map` on the geodesic icosphere of
-/// subdivision `level` (`remesh_on_icosphere()`) and measures the distance from every vertex
-/// and every face centroid of `tm` to the resampled surface (`Resampling_error`).
+/// The distance from every vertex and every face centroid of `tm` to the surface `resampled`
+/// (for instance the output of `remesh_on_icosphere()`), relative to the diagonal of the
+/// bounding box of `tm` (`Resampling_error`).
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph`
-/// \tparam SphereMap a readable property map `vertex_descriptor -> Point_3`
+/// \tparam ResampledMesh a model of `FaceListGraph` whose points are those of
+///         `Exact_predicates_inexact_constructions_kernel`, such as `Surface_mesh<Epick::Point_3>`
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{vertex_point_map} the input positions; default `get(CGAL::vertex_point, tm)` \cgalParamNEnd
 /// \cgalNamedParamsEnd
-/// \pre the map is valid (`Sphere_point_location::has_valid_map()`) and `0 <= level <= 9`
-template <class TriangleMesh, class SphereMap, class NamedParameters = CGAL::parameters::Default_named_parameters>
-Resampling_error resampling_error(const TriangleMesh& tm, const SphereMap& sphere_map, int level = 6,
-                                  const NamedParameters& np = CGAL::parameters::default_values())
+template <class TriangleMesh, class ResampledMesh,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
+Resampling_error distance_to_resampled(const TriangleMesh& tm, const ResampledMesh& resampled,
+                                       const NamedParameters& np = CGAL::parameters::default_values())
 {
   using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
-  using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+  using Primitive = CGAL::AABB_face_graph_triangle_primitive<ResampledMesh>;
   using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
@@ -63,9 +63,6 @@ Resampling_error resampling_error(const TriangleMesh& tm, const SphereMap& spher
     return Kernel::Point_3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
   };
 
-  const Sphere_point_location<TriangleMesh, Kernel> location(tm, sphere_map, np);
-  Mesh resampled;
-  remesh_on_icosphere(location, level, resampled);
   Tree tree(faces(resampled).first, faces(resampled).second, resampled);
   tree.accelerate_distance_queries();
 
@@ -90,6 +87,28 @@ Resampling_error resampling_error(const TriangleMesh& tm, const SphereMap& spher
   }
   error.mean = error.samples > 0 ? sum / double(error.samples) : 0;
   return error;
+}
+
+/// \ingroup PkgSphericalParameterizationRef
+/// Resamples `tm` through the valid sphere map `sphere_map` on the geodesic icosphere of
+/// subdivision `level` (`remesh_on_icosphere()`) and measures the distance from every vertex
+/// and every face centroid of `tm` to the resampled surface (`distance_to_resampled()`).
+///
+/// \tparam TriangleMesh a model of `FaceListGraph`
+/// \tparam SphereMap a readable property map `vertex_descriptor -> Point_3`
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{vertex_point_map} the input positions; default `get(CGAL::vertex_point, tm)` \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \pre the map is valid (`Sphere_point_location::has_valid_map()`) and `0 <= level <= 9`
+template <class TriangleMesh, class SphereMap, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Resampling_error resampling_error(const TriangleMesh& tm, const SphereMap& sphere_map, int level = 6,
+                                  const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+  const Sphere_point_location<TriangleMesh, Kernel> location(tm, sphere_map, np);
+  CGAL::Surface_mesh<Kernel::Point_3> resampled;
+  remesh_on_icosphere(location, level, resampled);
+  return distance_to_resampled(tm, resampled, np);
 }
 
 } // namespace Spherical_parameterization
