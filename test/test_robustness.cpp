@@ -514,6 +514,30 @@ Mesh with_needles(const Mesh& mesh, int count, double distance)
   return copy;
 }
 
+/// `count` faces each split at a new vertex placed on one of their corners, which leaves two
+/// faces of zero area with a repeated point; in the first of them, one more vertex on the same
+/// corner, which leaves a face whose three points coincide. Mesh repairs and exports leave
+/// such faces behind.
+Mesh with_zero_area_faces(const Mesh& mesh, int count)
+{
+  Mesh copy = mesh;
+  std::vector<Mesh::Face_index> faces(copy.faces().begin(), copy.faces().end());
+  std::shuffle(faces.begin(), faces.end(), rng);
+  for(int i = 0; i < count && i < int(faces.size()); ++i) {
+    const auto corner = copy.halfedge(faces[std::size_t(i)]);
+    const Point p = copy.point(copy.target(corner));
+    const auto spoke = CGAL::Euler::add_center_vertex(corner, copy);
+    copy.point(copy.target(spoke)) = p;
+    if(i == 0) {
+      // The face of the corner, the new vertex and the corner's predecessor: two of its
+      // points are p; a vertex at p inside it makes one face of three equal points.
+      const auto flat = CGAL::Euler::add_center_vertex(copy.next(spoke), copy);
+      copy.point(copy.target(flat)) = p;
+    }
+  }
+  return copy;
+}
+
 /// A valid map, on its own points, with the default parameters. With `check_minimum`, also a
 /// minimum: Newton from it, to a much tighter tolerance, gains almost nothing.
 void test_irregular(Mesh mesh, const std::string& what, const std::string& shape = "bumpy ellipsoid",
@@ -607,6 +631,9 @@ void test_irregular_shapes()
   // Near-duplicate vertices: their needles, all but degenerate, would give the area terms
   // weights of 1e16 without the mollified reference triangles.
   test_irregular(with_needles(base, 50, 1e-6), "with 50 near-duplicate vertices at 1e-6 of an edge");
+  test_irregular(with_zero_area_faces(base, 20),
+                 "with 20 faces split at a corner (42 of zero area, one of three equal points)", "bumpy ellipsoid",
+                 true);
   // A coiled tube 3 circumferences long: a conformal map would squeeze part of it by about
   // exp(-19) in area.
   test_irregular(synthetic_shapes::helix<Point>(0.5), "coiled half a turn", "thin tube");

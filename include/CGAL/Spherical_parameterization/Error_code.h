@@ -23,7 +23,7 @@ enum class Error_code
   NOT_CONNECTED,           ///< the mesh has several connected components
   NOT_GENUS_ZERO,          ///< the Euler characteristic is not 2
   NON_FINITE_INPUT,        ///< a coordinate is NaN, infinite or larger than 1e150 in magnitude
-  DEGENERATE_INPUT,        ///< some input face has zero area or a repeated vertex
+  DEGENERATE_INPUT,        ///< every input face has zero area (the surface has no area to map)
   INVALID_PARAMETER,       ///< a named parameter has an unusable value (weight, iterations, ...)
   INVALID_INITIALIZATION,  ///< the initial map is not on the sphere or does not have degree +-1
   NO_VALID_MAP,            ///< the solver stopped with flipped or degenerate faces
@@ -47,7 +47,7 @@ inline const char* error_message(Error_code code)
   case Error_code::NOT_CONNECTED: return "the input mesh has several connected components";
   case Error_code::NOT_GENUS_ZERO: return "the input mesh is not of genus 0";
   case Error_code::NON_FINITE_INPUT: return "the input has non-finite or overflowing coordinates";
-  case Error_code::DEGENERATE_INPUT: return "the input mesh has degenerate faces";
+  case Error_code::DEGENERATE_INPUT: return "the input mesh has no area";
   case Error_code::INVALID_PARAMETER: return "a parameter has an invalid value";
   case Error_code::INVALID_INITIALIZATION: return "the initial map is not a map onto the unit sphere of degree +-1";
   case Error_code::NO_VALID_MAP: return "no valid map found: some faces are flipped or degenerate";

@@ -116,11 +116,17 @@ struct Triangle_soup
   }
 
   /// The triangle the energies compare face `f` with: its own shape, made a little fatter if
-  /// it is nearly degenerate (`mollified_triangle()`), with the area it stands for.
+  /// it is nearly degenerate (`mollified_triangle()`), with the area it stands for. A face
+  /// whose three points coincide has no length to mollify: it stands for an equilateral
+  /// triangle of the largest local scale at its vertices, as its neighbours see it.
   Reference_triangle reference_triangle(std::size_t f) const
   {
     const auto& t = faces[f];
     Reference_triangle r = mollified_triangle(points[t[0]], points[t[1]], points[t[2]]);
+    if(!(r.area > 0) && !vertex_scales.empty()) {
+      const double side = std::max({vertex_scales[t[0]], vertex_scales[t[1]], vertex_scales[t[2]]});
+      r = planar_triangle({side, side, side});
+    }
     if(!represented_areas.empty())
       r.area = represented_areas[f];
     r.area_floor = area_floor(f);

@@ -307,33 +307,28 @@ std::size_t count_components(const TriangleMesh& tm)
   return components;
 }
 
-/// Zero-area triangles, decided exactly (filtered predicate) on the double coordinates.
-/// A repeated point is the collinear case with two equal points.
+/// A surface without area: every triangle has zero area, decided exactly (filtered predicate)
+/// on the double coordinates (a repeated point is the collinear case with two equal points).
+/// Single zero-area faces are fine: their reference triangles are mollified
+/// (`Triangle_soup::reference_triangle()`), but a mesh without area has no scale to map.
 template <class TriangleMesh, class Coordinates>
-Input_report check_degenerate_faces(const TriangleMesh& tm, const Coordinates& coordinates)
+Input_report check_has_area(const TriangleMesh& tm, const Coordinates& coordinates)
 {
   const auto point = [&](auto v) {
     const Eigen::Vector3d p = coordinates(v);
     return Epick::Point_3(p.x(), p.y(), p.z());
   };
-  std::size_t bad = 0, example = 0, index = 0;
   for(auto f : faces(tm)) {
     const auto h = halfedge(f, tm);
-    if(CGAL::collinear(point(target(h, tm)), point(target(next(h, tm), tm)), point(target(prev(h, tm), tm))) &&
-       bad++ == 0)
-      example = index;
-    ++index;
+    if(!CGAL::collinear(point(target(h, tm)), point(target(next(h, tm), tm)), point(target(prev(h, tm), tm))))
+      return Input_report();
   }
-  if(bad == 0)
-    return Input_report();
-  return {Error_code::DEGENERATE_INPUT,
-          count_of(bad, "face") + " with zero area (collinear or repeated points), e.g. face " +
-              std::to_string(example)};
+  return {Error_code::DEGENERATE_INPUT, "every face has zero area (collinear or repeated points)"};
 }
 
 /// Checks, in this order, that `tm` is a non-empty valid triangle mesh with finite
 /// coordinates, no isolated vertex, no border, only manifold vertices, one component,
-/// genus 0 and no zero-area face: the input a spherical parameterization needs.
+/// genus 0 and some area: the input a spherical parameterization needs.
 /// Linear time plus hashing (for graphs without index-based descriptors); never loops on
 /// corrupted halfedge structures. `detail` says where the first failing check failed.
 /// `coordinates(v)`: the point of vertex `v` as an `Eigen::Vector3d` (`point_coordinates()`).
@@ -389,7 +384,7 @@ Input_report check_input(const TriangleMesh& tm, const Coordinates& coordinates)
     return {Error_code::NOT_GENUS_ZERO,
             "genus " + std::to_string((2 - chi) / 2) + " (Euler characteristic " + std::to_string(chi) + ")"};
 
-  return check_degenerate_faces(tm, coordinates);
+  return check_has_area(tm, coordinates);
 }
 
 } // namespace internal
