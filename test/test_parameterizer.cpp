@@ -735,6 +735,18 @@ void expect_error(const std::string& name, Mesh mesh, SP::Error_code expected, c
   report(name + ": Result.valid is false", !r.valid);
 }
 
+/// A model of the energy concept whose every face is NaN.
+struct Not_a_number_energy
+{
+  struct Face_data {};
+  Face_data face_data(const SP::Reference_triangle&) const { return {}; }
+  template <class Number>
+  Number flat_energy(const SP::Chord_triangle<Number>& t, const Face_data&) const
+  {
+    return t.squared_double_area() * std::numeric_limits<double>::quiet_NaN();
+  }
+};
+
 void test_bad_input()
 {
   Section_timer timer("bad input");
@@ -780,6 +792,16 @@ void test_bad_input()
   expect_error("[cube of quads]", mesh_from_soup<Mesh>(cube, quads), SP::Error_code::NOT_TRIANGLE_MESH, defaults);
 
   expect_error("[icosphere, tolerance(-1)]", sphere, SP::Error_code::INVALID_PARAMETER, SP::parameters::tolerance(-1.0));
+
+  // An energy that no stage can evaluate: the map may be valid, but it is no minimum, and the
+  // status must not say it converged.
+  Mesh unmeasurable = sphere;
+  Sphere_map out = new_sphere_map(unmeasurable, "v:unmeasurable");
+  const SP::Result r = CGAL::spherical_parameterize(unmeasurable, out, SP::parameters::energy(Not_a_number_energy()));
+  report("[icosphere, an energy that is NaN everywhere]: not OK, and NOT_CONVERGED with a detail if valid",
+         r.status != SP::Error_code::OK &&
+           (!r.valid || (r.status == SP::Error_code::NOT_CONVERGED && r.detail.find("not finite") != std::string::npos)),
+         std::string("got \"") + r.message() + "\" " + r.detail);
   expect_error("[icosphere, number_of_iterations(0)]", sphere, SP::Error_code::INVALID_PARAMETER,
                CGAL::parameters::number_of_iterations(0));
 }

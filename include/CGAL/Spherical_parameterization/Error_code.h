@@ -27,7 +27,8 @@ enum class Error_code
   INVALID_PARAMETER,       ///< a named parameter has an unusable value (weight, iterations, ...)
   INVALID_INITIALIZATION,  ///< the initial map is not on the sphere or does not have degree +-1
   NO_VALID_MAP,            ///< the solver stopped with flipped or degenerate faces
-  NOT_CONVERGED,           ///< the map is valid but the iteration cap was hit before convergence
+  NOT_CONVERGED,           ///< the map is valid but the iteration cap was hit before convergence,
+                           ///< or the energy is not finite on it (not minimized)
   CANCELLED,               ///< the visitor asked to stop
   TIME_LIMIT               ///< `maximum_running_time` was reached
 };

@@ -35,6 +35,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -280,13 +281,16 @@ private:
       result.status = *log.interruption == internal::Newton_stop::CANCELLED ? Error_code::CANCELLED : Error_code::TIME_LIMIT;
     else if(!result.valid)
       result.status = Error_code::NO_VALID_MAP;
-    else if(log.input_stop == internal::Newton_stop::ITERATION_CAP)
+    else if(log.input_stop == internal::Newton_stop::ITERATION_CAP || !std::isfinite(result.energy))
       result.status = Error_code::NOT_CONVERGED;
     else
       result.status = Error_code::OK;
     if(!result.valid)
       result.detail = std::to_string(validity.flipped) + " flipped and " + std::to_string(validity.degenerate) +
                       " degenerate faces, degree " + std::to_string(result.degree);
+    else if(!std::isfinite(result.energy))
+      // No stage can minimize an energy it cannot evaluate: the map is a valid start, not a minimum.
+      result.detail = "the energy is not finite on the map";
   }
 
   template <class SphereMap>
