@@ -44,7 +44,8 @@ void add_slivers(CGAL::Surface_mesh<Point>& mesh, int count, double height, Rand
 
 /// Faces `(a, b, c)` split at the point `a + distance (c - a) + off_edge (b - a)`: a
 /// near-duplicate vertex and two needles. With `off_edge` 0 the point is on the edge `ac` but
-/// for rounding, which may leave an exactly collinear face (`DEGENERATE_INPUT`).
+/// for rounding, which may leave an exactly collinear face; with both 0 it is `a` itself, and
+/// two faces have zero area.
 template <class Point, class Random>
 void add_needles(CGAL::Surface_mesh<Point>& mesh, int count, double distance, double off_edge, Random& random)
 {

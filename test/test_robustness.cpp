@@ -514,27 +514,21 @@ Mesh with_needles(const Mesh& mesh, int count, double distance)
   return copy;
 }
 
-/// `count` faces each split at a new vertex placed on one of their corners, which leaves two
-/// faces of zero area with a repeated point; in the first of them, one more vertex on the same
-/// corner, which leaves a face whose three points coincide. Mesh repairs and exports leave
-/// such faces behind.
+/// `count` faces each split at one of their corners (`add_needles()` at distance 0), which
+/// leaves two faces of zero area with a repeated point; then one of those split again at the
+/// same corner, which leaves a face whose three points coincide. Mesh repairs and exports
+/// leave such faces behind.
 Mesh with_zero_area_faces(const Mesh& mesh, int count)
 {
   Mesh copy = mesh;
-  std::vector<Mesh::Face_index> faces(copy.faces().begin(), copy.faces().end());
-  std::shuffle(faces.begin(), faces.end(), rng);
-  for(int i = 0; i < count && i < int(faces.size()); ++i) {
-    const auto corner = copy.halfedge(faces[std::size_t(i)]);
-    const Point p = copy.point(copy.target(corner));
-    const auto spoke = CGAL::Euler::add_center_vertex(corner, copy);
-    copy.point(copy.target(spoke)) = p;
-    if(i == 0) {
-      // The face of the corner, the new vertex and the corner's predecessor: two of its
-      // points are p; a vertex at p inside it makes one face of three equal points.
-      const auto flat = CGAL::Euler::add_center_vertex(copy.next(spoke), copy);
-      copy.point(copy.target(flat)) = p;
-    }
-  }
+  mesh_defects::add_needles(copy, count, 0, 0, rng);
+  for(auto f : copy.faces())
+    for(auto h : CGAL::halfedges_around_face(copy.halfedge(f), copy))
+      if(copy.point(copy.source(h)) == copy.point(copy.target(h))) {
+        const Point repeated = copy.point(copy.source(h));
+        copy.point(copy.target(CGAL::Euler::add_center_vertex(h, copy))) = repeated;
+        return copy;
+      }
   return copy;
 }
 
