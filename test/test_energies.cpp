@@ -34,6 +34,7 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/QR>
 
 #include <algorithm>
 #include <array>
@@ -952,6 +953,34 @@ void test_project_to_psd()
   report("project_to_psd makes a matrix with NaN zero", not_finite.isZero(0));
 }
 
+// With invariant directions: a negative eigenvalue along them becomes 0, one across them
+// its absolute value, a positive one stays; built from known eigenvectors, so that each
+// case is checked on its own direction.
+void test_project_to_psd_with_invariant_directions()
+{
+  using Matrix = Eigen::Matrix<double, 6, 6>;
+  double worst = 0;
+  for(int trial = 0; trial < 100; ++trial) {
+    const Eigen::HouseholderQR<Matrix> qr(Matrix::Random());
+    const Matrix q = qr.householderQ();  // orthonormal eigenvectors
+    Eigen::Matrix<double, 6, 1> values;
+    values << -3, -2e-3, -1, 0.5, 2, 4;
+    const Matrix a = q * values.asDiagonal() * q.transpose();
+    // The first two eigenvectors span the invariant directions, mixed by a rotation.
+    const double angle = 0.3 + trial * 0.01;
+    Eigen::Matrix<double, 6, 2> invariant;
+    invariant.col(0) = std::cos(angle) * q.col(0) + std::sin(angle) * q.col(1);
+    invariant.col(1) = -std::sin(angle) * q.col(0) + std::cos(angle) * q.col(1);
+    Matrix p = a;
+    SP::internal::project_to_psd(p, invariant);
+    Eigen::Matrix<double, 6, 1> expected;
+    expected << 0, 0, 1, 0.5, 2, 4;
+    worst = std::max(worst, (p - q * expected.asDiagonal() * q.transpose()).norm() / a.norm());
+  }
+  report("project_to_psd with invariant directions drops their negative curvature and makes the rest absolute (rel 1e-12)",
+         worst <= 1e-12, "rel. err. " + str(worst));
+}
+
 int main()
 {
   rng.seed(20260501);
@@ -967,6 +996,7 @@ int main()
   test_tangent_basis();
   test_symmetric_eigen();
   test_project_to_psd();
+  test_project_to_psd_with_invariant_directions();
   std::cout << passed << " passed, " << failed << " failed" << std::endl;
   return failed == 0 ? 0 : 1;
 }

@@ -554,12 +554,49 @@ private:
     return h;
   }
 
+  // An orthonormal basis of the tangent directions that rotate the three points of face `f`
+  // together about the centre (the face's energy is invariant along them). A face whose
+  // points coincide has only two; a direction lost to rounding is left out (a zero column).
+  Eigen::Matrix<double, 6, 3> face_rotations(std::size_t f, const Points& x) const
+  {
+    const auto& t = (*faces_)[f];
+    Eigen::Matrix<double, 6, 3> r;
+    for(int k = 0; k < 3; ++k) {
+      for(int i = 0; i < 3; ++i)
+        r.template block<2, 1>(2 * i, k) = bases_[t[i]].transpose() * Eigen::Vector3d::Unit(k).cross(x[t[i]]);
+      const double length = r.col(k).norm();
+      for(int j = 0; j < k; ++j)  // Gram-Schmidt
+        r.col(k) -= r.col(j).dot(r.col(k)) * r.col(j);
+      const double left = r.col(k).norm();
+      if(left > 1e-8 * length)
+        r.col(k) /= left;
+      else
+        r.col(k).setZero();
+    }
+    return r;
+  }
+
   void compute_bases(const Points& x)
   {
     bases_.resize(n_);
     for(std::size_t v = 0; v < n_; ++v)
       bases_[v] = tangent_basis(x[v]);
   }
+
+  // A face's Hessian made PSD where the barrier does not hold it: its negative curvature
+  // along the rotations of its three points, which comes from the chart (the energy is
+  // invariant along them), is dropped rather than made absolute. Made absolute, it adds
+  // about the face's energy to the stiffness of every smooth mode of the map, which is the
+  // order of those modes' own (default energy, 12 meshes: 16% fewer iterations).
+  void project_free_face(Face_hessian& h, std::size_t f, const Points& x) const
+  {
+    project_to_psd(h, face_rotations(f, x));
+  }
+
+  // A face the barrier holds keeps the absolute value of every negative eigenvalue: its
+  // gradient is the barrier's, and dropping the curvature along its rotations lengthens the
+  // continuation and floor stages (Combined and Dirichlet, 6 meshes: 14 and 15% slower).
+  static void project_held_face(Face_hessian& h) { project_to_psd(h); }
 
   // Per face: the tangent Hessian, projected to PSD if asked. Fills gradient_ (tangent),
   // ambient_gradient_ and matrix_ (without shift).
@@ -580,8 +617,10 @@ private:
         jet += barrier<Triangle_jet>(f, x);
       face_gradient_[f] = jet.gradient;
       Face_hessian h = tangent_hessian(f, jet.hessian);
-      if(projected || held)
-        project_to_psd(h);
+      if(held)
+        project_held_face(h);
+      else if(projected)
+        project_free_face(h, f, x);
       store_lower(h, f);
     });
     sum_face_terms(x);
@@ -600,7 +639,7 @@ private:
       for(int i = 0; i < 6; ++i)
         for(int j = 0; j <= i; ++j)
           h(i, j) = h(j, i) = *in++;
-      project_to_psd(h);
+      project_free_face(h, f, x);
       store_lower(h, f);
     });
     sum_face_terms(x);
