@@ -423,6 +423,7 @@ private:
   {
     options.boost_search = moebius_boosts_ && !options.stop_when_fold_free;
     options.extend_projected_steps = has_area_barrier(energy);
+    options.drop_rotation_curvature = has_area_barrier(energy);
     options.stage = stage_name(stage);
     options.iteration_offset = log_.iterations;
     const Spherical_energy<StageEnergy> spherical(level.soup, energy, correction_, ConcurrencyTag());
