@@ -102,8 +102,8 @@ struct Newton_options
   /// (`Newton_solver::project_free_face()`). For energies with an area barrier, for the same
   /// reason: their projected steps carry them to the minimum, and the absolute values stiffen
   /// the model along the map's smooth modes. The paper's energies reach their minima on the
-  /// exact Hessian; a softer model in their early steps only moves their paths (Tutte at
-  /// 302k faces: 46 -> 91 iterations, its 40.5k level then needing the continuation).
+  /// exact Hessian; a softer model in their early steps only moves their paths to other
+  /// basins, as with `extend_projected_steps`.
   bool drop_rotation_curvature = false;
   const char* stage = "";            ///< for progress reports
   std::size_t iteration_offset = 0;  ///< iterations of earlier stages, for progress reports

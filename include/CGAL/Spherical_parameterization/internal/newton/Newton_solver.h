@@ -588,8 +588,7 @@ private:
   // `drop_rotation_curvature`, its negative curvature along the rotations of its three
   // points, which comes from the chart (the energy is invariant along them), is dropped
   // rather than made absolute: made absolute, it adds about the face's energy to the
-  // stiffness of every smooth mode of the map, which is the order of those modes' own
-  // (default energy, 12 meshes: 16% fewer iterations).
+  // stiffness of every smooth mode of the map, which is the order of those modes' own.
   void project_free_face(Face_hessian& h, std::size_t f, const Points& x) const
   {
     if(drop_rotation_curvature_)
@@ -599,8 +598,8 @@ private:
   }
 
   // A face the barrier holds keeps the absolute value of every negative eigenvalue: its
-  // gradient is the barrier's, and dropping the curvature along its rotations lengthens the
-  // continuation and floor stages (Combined and Dirichlet, 6 meshes: 14 and 15% slower).
+  // gradient is the barrier's, which makes the curvature along its rotations large, and
+  // made absolute it damps the capped steps of the continuation and floor stages.
   static void project_held_face(Face_hessian& h) { project_to_psd(h); }
 
   // Per face: the tangent Hessian, projected to PSD if asked. Fills gradient_ (tangent),
