@@ -95,7 +95,7 @@ const char* usage =
   "         [--texture equirectangular|octahedral OUT.obj]\n"
   "  --energy NAME                  default balanced: (1 - T) conformal + T area distortion\n"
   "  --area-preservation T          the balanced energy's knob, from 0 (conformal) to 1 (equal-area);\n"
-  "                                 default 0.25, the least that keeps protrusions for a resampling\n"
+  "                                 default 0.5, which keeps protrusions for a resampling\n"
   "  --weights A [B]                the energy's weights instead (balanced and combined: A on the\n"
   "                                 angles, B on the areas; symmetric_dirichlet: A on the map's\n"
   "                                 Dirichlet energy, B on its inverse's)\n"
