@@ -104,8 +104,8 @@ public:
     if(layout_ == Texture_layout::EQUIRECTANGULAR)
       return {p, p + Eigen::Vector2d(1, 0), p - Eigen::Vector2d(1, 0)};
     std::vector<Eigen::Vector2d> c{p};
-    for(const Eigen::Vector2d middle : {Eigen::Vector2d(1, 0), Eigen::Vector2d(-1, 0), Eigen::Vector2d(0, 1),
-                                        Eigen::Vector2d(0, -1)})
+    for(const Eigen::Vector2d& middle : {Eigen::Vector2d(1, 0), Eigen::Vector2d(-1, 0), Eigen::Vector2d(0, 1),
+                                         Eigen::Vector2d(0, -1)})
       c.push_back(2 * middle - p);
     for(const double x : {-2.0, 2.0})
       for(const double y : {-2.0, 2.0})

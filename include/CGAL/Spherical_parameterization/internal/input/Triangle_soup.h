@@ -179,7 +179,7 @@ inline std::vector<double> local_scales(const Points& points, const Faces& faces
   std::priority_queue<std::pair<double, int>> queue;
   for(const auto& t : faces)
     for(int i = 0; i < 3; ++i)
-      for(const auto [a, b] : {std::pair(t[i], t[(i + 1) % 3]), std::pair(t[(i + 1) % 3], t[i])})
+      for(const auto& [a, b] : {std::pair(t[i], t[(i + 1) % 3]), std::pair(t[(i + 1) % 3], t[i])})
         if(0.5 * scale[std::size_t(a)] > scale[std::size_t(b)])
           queue.emplace(scale[std::size_t(a)], a);
   if(queue.empty())
