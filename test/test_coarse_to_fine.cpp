@@ -5,16 +5,19 @@
 // there for: the progressive mesh (a closed genus-0 manifold at every level, undone exactly,
 // area shares kept), the fans of the vertex splits, the placement of a split vertex in the
 // kernel of its fan, the mean value point, the Moebius boost, the floor patch, the
-// two-grid cycle of the input's first step, and the choice of a level's next stage.
+// two-grid cycle of the input's first step, the Newton system in the tangent charts, the
+// stopping rules, and the choice of a level's next stage.
 // Meshes built in code only (the `fast` CTest label, also run under the sanitizers).
 // Usage: test_coarse_to_fine [ignored arguments]
 
+#include <CGAL/Spherical_parameterization/Balanced_energy.h>
 #include <CGAL/Spherical_parameterization/Dirichlet_energy.h>
 #include <CGAL/Spherical_parameterization/Sparse_solver_traits.h>
 #include <CGAL/Spherical_parameterization/internal/hierarchy/Coarse_to_fine.h>
 #include <CGAL/Spherical_parameterization/internal/pipeline/Floor_patch.h>
 #include <CGAL/Spherical_parameterization/internal/pipeline/next_stage.h>
 #include <CGAL/Spherical_parameterization/internal/newton/Newton_solver.h>
+#include <CGAL/Spherical_parameterization/internal/newton/Tangent_newton_system.h>
 #include <CGAL/Spherical_parameterization/internal/hierarchy/Progressive_mesh.h>
 #include <CGAL/Spherical_parameterization/internal/energies/Spherical_energy.h>
 #include <CGAL/Spherical_parameterization/internal/hierarchy/kernel_placement.h>
@@ -528,12 +531,71 @@ void test_two_grid_cycle()
          !levels.coarse_correction(x, std::vector<Eigen::Vector3d>(n, Eigen::Vector3d::Zero()), unused));
 }
 
+// The Newton system in the tangent charts is the exact gradient and Hessian of the energy
+// pulled back by the retraction, `u -> E(normalize(x + B u))`: against central differences
+// of the energy, with some vertices held (a patch), whose rows and columns it leaves out. Its
+// projection of an exact assembly is the projected assembly, bit for bit.
+void test_tangent_newton_system()
+{
+  const I::Triangle_soup soup = bumpy_icosphere(1);
+  I::Points x = SP::make_icosphere(1).points;
+  for(auto& p : x) p = (p + 0.2 * Eigen::Vector3d(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1))).normalized();
+  const I::Spherical_energy<SP::Balanced_energy> energy(soup, SP::balanced_energy());
+  const std::size_t held = 5, free = soup.number_of_vertices() - held;
+  using System = I::Tangent_newton_system<CGAL::Sequential_tag>;
+  System system(soup.faces, soup.number_of_vertices(), free);
+  system.update_bases(x);
+  auto face_jet = [&](std::size_t f, bool& held) {
+    held = false;
+    return energy.face<SP::Triangle_jet>(f, x);
+  };
+  system.assemble(x, face_jet, false, false);
+  const Eigen::MatrixXd lower = Eigen::MatrixXd(system.matrix());
+  const Eigen::MatrixXd hessian = lower.selfadjointView<Eigen::Lower>();
+
+  const int size = int(2 * free);
+  I::Points moved(x.size());
+  auto pulled_back = [&](const System::Vector& u) {
+    system.step_to(x, u, 1, moved);
+    return energy.value(moved);
+  };
+  auto unit = [&](int i) { return System::Vector(System::Vector::Unit(size, i)); };
+  const double h = 1e-4;
+  double gradient_error = 0, hessian_error = 0;
+  for(int i = 0; i < size; ++i) {
+    const double difference = (pulled_back(h * unit(i)) - pulled_back(-h * unit(i))) / (2 * h);
+    gradient_error = std::max(gradient_error, std::abs(difference - system.gradient()[i]));
+    for(int j = 0; j <= i; ++j) {
+      const System::Vector a = h * unit(i), b = h * unit(j);
+      const double second = (pulled_back(a + b) - pulled_back(a - b) - pulled_back(b - a) + pulled_back(-a - b)) / (4 * h * h);
+      hessian_error = std::max(hessian_error, std::abs(second - hessian(i, j)));
+    }
+  }
+  gradient_error /= system.gradient().cwiseAbs().maxCoeff();
+  hessian_error /= hessian.cwiseAbs().maxCoeff();
+  report("tangent Newton system: gradient matches central differences of the pulled back energy (rel 1e-6)",
+         gradient_error <= 1e-6 && system.gradient().size() == size, "rel. err. " + str(gradient_error));
+  report("tangent Newton system: Hessian matches second differences, retraction term included (rel 1e-5)",
+         hessian_error <= 1e-5 && hessian.rows() == size, "rel. err. " + str(hessian_error));
+
+  for(bool drop_rotations : {false, true}) {
+    system.assemble(x, face_jet, true, drop_rotations);
+    const System::Vector projected_gradient = system.gradient();
+    const Eigen::MatrixXd projected = Eigen::MatrixXd(system.matrix());
+    system.assemble(x, face_jet, false, drop_rotations);
+    system.project_assembled_faces(x, drop_rotations);
+    report(std::string("tangent Newton system: an exact assembly projected afterwards is the projected assembly") +
+             (drop_rotations ? " (rotations' curvature dropped)" : ""),
+           Eigen::MatrixXd(system.matrix()) == projected && system.gradient() == projected_gradient &&
+             (projected - lower).norm() > 1e-3 * lower.norm());
+  }
+}
+
 // The slow capped tail: a fold-free stage stops once its last capped steps gained less than
 // half the threshold each on average; not on fewer capped steps, nor on faster gains.
 void test_slow_capped_tail()
 {
-  using Newton = I::Newton_solver<SP::Eigen_sparse_LDLT_traits, CGAL::Sequential_tag>;
-  const std::size_t window = Newton::capped_tail_window;
+  const std::size_t window = I::capped_tail_window;
   const double threshold = 1e-4;
   auto tail = [&](double gain_per_iteration) {
     std::vector<double> history{10.0};
@@ -542,12 +604,12 @@ void test_slow_capped_tail()
     return history;
   };
   report("slow capped tail: stops when the capped steps gain 0.45 of the threshold each",
-         Newton::slow_capped_tail(tail(0.45), window, threshold));
-  report("slow capped tail: goes on when they gain 0.55 of it each", !Newton::slow_capped_tail(tail(0.55), window, threshold));
+         I::slow_capped_tail(tail(0.45), window, threshold));
+  report("slow capped tail: goes on when they gain 0.55 of it each", !I::slow_capped_tail(tail(0.55), window, threshold));
   report("slow capped tail: goes on when fewer of the last steps were capped",
-         !Newton::slow_capped_tail(tail(0.45), window - 1, threshold));
+         !I::slow_capped_tail(tail(0.45), window - 1, threshold));
   report("slow capped tail: goes on with too short a history",
-         !Newton::slow_capped_tail(std::vector<double>(window, 10.0), window + 1, threshold));
+         !I::slow_capped_tail(std::vector<double>(window, 10.0), window + 1, threshold));
 }
 
 // The choice of the next stage of a level's fold-free minimization, against the design:
@@ -611,6 +673,7 @@ int main()
   test_floor_patch();
   test_two_grid_cycle();
   test_parallel_splits();
+  test_tangent_newton_system();
   test_slow_capped_tail();
   test_next_stage();
   std::cout << passed << " passed, " << failed << " failed" << std::endl;

@@ -99,7 +99,7 @@ struct Newton_options
   bool extend_projected_steps = false;
   /// Where the barrier does not hold a face, drop the negative curvature of its projected
   /// Hessian along the rotations of its three points instead of making it absolute
-  /// (`Newton_solver::project_free_face()`). For energies with an area barrier, for the same
+  /// (`Tangent_newton_system::project_free_face()`). For energies with an area barrier, for the same
   /// reason: their projected steps carry them to the minimum, and the absolute values stiffen
   /// the model along the map's smooth modes. The paper's energies reach their minima on the
   /// exact Hessian; a softer model in their early steps only moves their paths to other

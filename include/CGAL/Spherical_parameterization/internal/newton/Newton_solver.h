@@ -13,15 +13,13 @@
 #include <CGAL/Spherical_parameterization/internal/validity/map_validity.h>
 #include <CGAL/Spherical_parameterization/internal/newton/mobius_boost.h>
 #include <CGAL/Spherical_parameterization/internal/backends/parallel_for.h>
-#include <CGAL/Spherical_parameterization/internal/newton/project_psd.h>
 #include <CGAL/Spherical_parameterization/internal/newton/step_bound.h>
-#include <CGAL/Spherical_parameterization/internal/newton/tangent_basis.h>
+#include <CGAL/Spherical_parameterization/internal/newton/stopping_rules.h>
+#include <CGAL/Spherical_parameterization/internal/newton/Tangent_newton_system.h>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/SparseCore>
+#include <Eigen/Core>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -33,7 +31,6 @@
 namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
-
 
 /// True if the solver traits `T` have the optional `allocate_factor()`.
 template <class T, class = void>
@@ -47,10 +44,11 @@ struct has_allocate_factor<T, std::void_t<decltype(std::declval<T&>().allocate_f
 
 /// Newton's method on the product of unit spheres, one 2D tangent chart per vertex,
 /// re-centred at every iteration (the retraction is the central projection):
-/// - the exact Hessian in the tangent charts: each face's 9x9 ambient Hessian pulled to its
-///   6 tangent variables, plus the sphere-curvature term `-<g_v, x_v> I_2` of each vertex.
-///   Projecting it to PSD instead hides the negative curvature of the near-Moebius modes
-///   along which a map slides, and costs an order of magnitude more iterations;
+/// - the exact Hessian in the tangent charts (`Tangent_newton_system`): each face's 9x9
+///   ambient Hessian pulled to its 6 tangent variables, plus the sphere-curvature term
+///   `-<g_v, x_v> I_2` of each vertex. Projecting it to PSD instead hides the negative
+///   curvature of the near-Moebius modes along which a map slides, and costs an order of
+///   magnitude more iterations;
 /// - a diagonal shift `mu` (Levenberg-Marquardt), grown until the factorization is positive
 ///   definite and relaxed after every iteration; where it would grow too large, the per-face
 ///   Hessians made positive definite for a few iterations (`project_to_psd`);
@@ -61,11 +59,9 @@ struct has_allocate_factor<T, std::void_t<decltype(std::declval<T&>().allocate_f
 template <class SparseSolver, class ConcurrencyTag>
 class Newton_solver
 {
-  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-  using Vector = Eigen::VectorXd;
-  using Basis = Eigen::Matrix<double, 3, 2>;
-  using Face_hessian = Eigen::Matrix<double, 6, 6>;
-  static constexpr int lower_entries = 21;  // of a symmetric 6x6 matrix
+  using System = Tangent_newton_system<ConcurrencyTag>;
+  using Vector = typename System::Vector;
+  using Basis = typename System::Basis;
 
   // Fold-free steps stop at this share of the first root of a face's determinant: closer
   // leaves faces nearly degenerate for the next step, farther shortens every capped step.
@@ -96,24 +92,23 @@ class Newton_solver
   static constexpr double relax_after_growth = 2;
   // A full step whose decrease is within this share of its model's (half the decrement).
   static constexpr double model_agreement = 0.1;
-  // Stops: a model-matching full step with a decrement under this many thresholds (the next
-  // one is quadratically smaller); a predicted decrement under this share of the threshold
-  // (the prediction errs by up to 20 times); a decrease under this share of it; less than
-  // the threshold gained over the last `stall_window` iterations.
+  // Stops (with those of `stopping_rules.h`): a model-matching full step with a decrement
+  // under this many thresholds (the next one is quadratically smaller); a predicted
+  // decrement under this share of the threshold (the prediction errs by up to 20 times); a
+  // decrease under this share of it.
   static constexpr double quadratic_tail_margin = 10;
   static constexpr double predicted_margin = 1e-2;
   static constexpr double negligible_decrease = 1e-2;
-  static constexpr std::size_t stall_window = 10;
 
 public:
   explicit Newton_solver(const Triangle_soup& soup, std::size_t free_vertices = std::numeric_limits<std::size_t>::max())
-    : faces_(&soup.faces), n_(soup.number_of_vertices()), free_(std::min(free_vertices, n_))
+    : faces_(&soup.faces), n_(soup.number_of_vertices()), free_(std::min(free_vertices, n_)),
+      system_(soup.faces, n_, free_)
   {
     barrier_data_.reserve(faces_->size());
     for(std::size_t f = 0; f < soup.faces.size(); ++f)
       barrier_data_.emplace_back(soup.reference_triangle(f));
-    build_pattern();
-    solver_.analyze_pattern(matrix_);
+    solver_.analyze_pattern(system_.matrix());
   }
 
   template <class Energy, class Visitor>
@@ -151,7 +146,7 @@ public:
         ++boosts.skipped;
       else
         boosts.record(boost_gain(energy, x, e));
-      compute_bases(x);
+      system_.update_bases(x);
       Vector d;
       const bool smoothing = out.iterations < options.smoothing_iterations;
       bool two_grid = false;
@@ -159,14 +154,14 @@ public:
         two_grid = smoothing_direction(energy, x, out.iterations == 0 ? options.coarse_correction : nullptr, d);
       else if(!newton_direction(energy, x, d)) { out.stop = Newton_stop::STALLED; break; }
 
-      double decrement = -gradient_.dot(d);
+      double decrement = -system_.gradient().dot(d);
       double threshold = options.tolerance * std::abs(e + options.held_energy);
       if(!(decrement > threshold)) { out.stop = Newton_stop::CONVERGED; break; }
 
       double alpha = 1;
       auto fold_free_cap = [&] {
         if(options.keep_fold_free)
-          alpha = std::min(1.0, step_cap_share * largest_fold_free_step(*faces_, x, ambient_step(d)));
+          alpha = std::min(1.0, step_cap_share * largest_fold_free_step(*faces_, x, system_.ambient(d)));
       };
       fold_free_cap();
       bool capped = alpha < 1;
@@ -175,8 +170,8 @@ public:
         // The line search had to shorten the two-grid step: the last level's Hessian does
         // not model the input's energy here (a level that ended on its fold barrier, as
         // squeezed protrusions do). Block Jacobi alone.
-        block_jacobi(-gradient_, d);
-        decrement = -gradient_.dot(d);
+        system_.block_jacobi(-system_.gradient(), d);
+        decrement = -system_.gradient().dot(d);
         alpha = 1;
         fold_free_cap();
         capped = alpha < 1;
@@ -275,7 +270,7 @@ public:
   }
 
   /// The tangent basis of each vertex at the last iterate whose Hessian was assembled.
-  const std::vector<Basis>& bases() const { return bases_; }
+  const std::vector<Basis>& bases() const { return system_.bases(); }
 
   /// Forgets the shifts learnt by the minimizations so far, as for a first one: a map started
   /// afresh does not inherit the shifts a stalled one grew to, which would stop its first
@@ -292,16 +287,9 @@ public:
   /// two-grid cycle would otherwise hold them until the input's first step.
   void keep_only_last_factor()
   {
-    Matrix empty;
-    matrix_.swap(empty);
-    std::vector<int>().swap(entry_index_);
-    std::vector<int>().swap(diagonal_index_);
+    system_.keep_only_bases();
     std::vector<Fold_barrier::Face_data>().swap(barrier_data_);
-    std::vector<Triangle_jet::Gradient>().swap(face_gradient_);
-    std::vector<double>().swap(face_hessian_);
     std::vector<double>().swap(face_value_);
-    std::vector<Eigen::Vector3d>().swap(ambient_gradient_);
-    Vector().swap(gradient_);
     Points().swap(probe_);
   }
 
@@ -312,12 +300,8 @@ public:
   /// this solver.
   void prepare_memory()
   {
-    const std::size_t nf = faces_->size();
-    face_gradient_.assign(nf, Triangle_jet::Gradient::Zero());
-    face_hessian_.assign(nf * lower_entries, 0.0);
-    face_value_.assign(nf, 0.0);
-    ambient_gradient_.assign(n_, Eigen::Vector3d::Zero());
-    bases_.assign(n_, Basis::Zero());
+    system_.prepare_memory();
+    face_value_.assign(faces_->size(), 0.0);
     if constexpr(has_allocate_factor<SparseSolver>::value)
       solver_.allocate_factor();
   }
@@ -354,23 +338,6 @@ public:
         under.push_back(int(f));
     return under;
   }
-
-  /// True if the last `capped_tail_window` iterations all had capped steps and gained less
-  /// than `capped_tail_gain` of `threshold` each on average
-  /// (`Newton_options::stop_slow_capped_tail`): the stall test of `stalled()`, on a shorter
-  /// window, for the steps the cap holds back. `history` holds the energy after each
-  /// iteration, the last one included.
-  static bool slow_capped_tail(const std::vector<double>& history, std::size_t capped_steps, double threshold)
-  {
-    return capped_steps >= capped_tail_window &&
-           recent_gain(history, capped_tail_window) <= capped_tail_gain * capped_tail_window * threshold;
-  }
-  // Half the threshold: the slides this stops gain a few thresholds per iteration for dozens
-  // of iterations, depending on rounding alone; the whole threshold leaves energies higher
-  // than a converged map's by more than the tests allow.
-  static constexpr double capped_tail_gain = 0.5;
-  // Three iterations: as good a stop as five, two iterations sooner.
-  static constexpr std::size_t capped_tail_window = 3;
 
 private:
   // The scale t of face `f` (`Fold_barrier::scale`), with its chord determinant in `det`.
@@ -429,33 +396,6 @@ private:
     return before - e;
   }
 
-  // Newton's decrement converges quadratically near a minimum, d_next = C d^2, with C
-  // estimated from the last two: d^3 / previous^2. Without a previous full step, or if the
-  // decrement did not shrink by 4, no prediction: the decrement itself is returned.
-  static constexpr double min_quadratic_shrink = 4;
-  static double predicted_decrement(double previous, double decrement)
-  {
-    if(!(previous > min_quadratic_shrink * decrement))
-      return decrement;
-    return decrement * (decrement / previous) * (decrement / previous);
-  }
-
-  // The energy decreased by less than `threshold` over the last iterations: a slow
-  // linear tail, such as faces pressed against the fold barrier in a squeezed protrusion,
-  // where the map no longer changes visibly.
-  static bool stalled(const std::vector<double>& history, double threshold)
-  {
-    return recent_gain(history, stall_window) <= threshold;
-  }
-
-  // The energy gained over the last `window` iterations; infinite if there were fewer.
-  static double recent_gain(const std::vector<double>& history, std::size_t window)
-  {
-    if(history.size() <= window)
-      return std::numeric_limits<double>::infinity();
-    return history[history.size() - 1 - window] - history.back();
-  }
-
   template <class Number>
   Number barrier(std::size_t f, const Points& x) const
   {
@@ -464,227 +404,25 @@ private:
                                 outer_weight_, floored_activation_);
   }
 
-  void build_pattern()
+  // Face `f`'s energy jet at `x`, with the fold barrier's if it holds the face (`held`).
+  template <class Energy>
+  Triangle_jet face_jet(const Spherical_energy<Energy>& energy, const Points& x, std::size_t f, bool& held) const
   {
-    // Lower triangle of the matrix of the free vertices: 2x2 blocks on the diagonal and at
-    // every edge between two of them, written column by column from the vertex adjacency
-    // (per-face triplets would cost nearly half the set-up).
-    const std::vector<std::vector<int>> later = later_neighbours();
-    const int size = int(2 * free_);
-    std::size_t entries = 0;
-    for(const std::vector<int>& n : later)
-      entries += 4 * n.size() + 3;
-    matrix_.resize(size, size);
-    matrix_.resizeNonZeros(Eigen::Index(entries));
-    int* outer = matrix_.outerIndexPtr();
-    int* inner = matrix_.innerIndexPtr();
-    int k = 0;
-    for(int column = 0; column < size; ++column) {
-      const int v = column / 2;
-      outer[column] = k;
-      for(int row = column; row < 2 * v + 2; ++row)  // the diagonal block
-        inner[k++] = row;
-      for(int u : later[v]) {
-        inner[k++] = 2 * u;
-        inner[k++] = 2 * u + 1;
-      }
-    }
-    outer[size] = k;
-    std::fill(matrix_.valuePtr(), matrix_.valuePtr() + k, 0.0);
-
-    // Where the entry (row, col) of the lower triangle is: in column `col` of vertex v, the
-    // diagonal block comes first, then the blocks of `later[v]` in their order.
-    const auto position = [&](int row, int col) {
-      const int v = col / 2, u = row / 2;
-      if(u == v)
-        return outer[col] + row - col;
-      const std::vector<int>& n = later[v];
-      const int rank = int(std::lower_bound(n.begin(), n.end(), u) - n.begin());
-      return outer[col] + 2 - col % 2 + 2 * rank + row % 2;
-    };
-    entry_index_.resize(faces_->size() * lower_entries);
-    for(std::size_t f = 0; f < faces_->size(); ++f)
-      for_each_lower_entry((*faces_)[f], [&](int local, int row, int col) {
-        entry_index_[f * lower_entries + local] = row < size ? position(row, col) : -1;
-      });
-    diagonal_index_.resize(size);
-    for(int i = 0; i < size; ++i)
-      diagonal_index_[i] = outer[i];
+    Triangle_jet jet = energy.template face<Triangle_jet>(f, x);
+    held = with_barrier_ && barrier<double>(f, x) > 0;
+    if(held)
+      jet += barrier<Triangle_jet>(f, x);
+    return jet;
   }
 
-  // For each free vertex, its free neighbours of larger index, sorted.
-  std::vector<std::vector<int>> later_neighbours() const
-  {
-    std::vector<std::vector<int>> later(free_);
-    for(const auto& t : *faces_)
-      for(int i = 0; i < 3; ++i) {
-        const int a = std::min(t[i], t[(i + 1) % 3]), b = std::max(t[i], t[(i + 1) % 3]);
-        if(std::size_t(b) < free_)
-          later[a].push_back(b);
-      }
-    for(std::vector<int>& n : later) {
-      std::sort(n.begin(), n.end());
-      n.erase(std::unique(n.begin(), n.end()), n.end());
-    }
-    return later;
-  }
-
-  // Calls fn(local, row, col) for the 21 lower entries (i >= j) of a face's 6x6 block,
-  // with (row, col) the global entry, swapped into the lower triangle.
-  template <class Fn>
-  static void for_each_lower_entry(const std::array<int, 3>& t, Fn fn)
-  {
-    int local = 0;
-    for(int i = 0; i < 6; ++i)
-      for(int j = 0; j <= i; ++j) {
-        int row = 2 * t[i / 2] + i % 2, col = 2 * t[j / 2] + j % 2;
-        if(row < col) std::swap(row, col);
-        fn(local++, row, col);
-      }
-  }
-
-  // A face's 9x9 ambient Hessian pulled back to the tangent variables of its vertices.
-  Face_hessian tangent_hessian(std::size_t f, const Triangle_jet::Hessian& ambient) const
-  {
-    const auto& t = (*faces_)[f];
-    Face_hessian h;
-    for(int i = 0; i < 3; ++i)
-      for(int j = 0; j < 3; ++j)
-        h.template block<2, 2>(2 * i, 2 * j) =
-          bases_[t[i]].transpose() * ambient.template block<3, 3>(3 * i, 3 * j) * bases_[t[j]];
-    return h;
-  }
-
-  // An orthonormal basis of the tangent directions that rotate the three points of face `f`
-  // together about the centre (the face's energy is invariant along them). A face whose
-  // points coincide has only two; a direction lost to rounding is left out (a zero column).
-  Eigen::Matrix<double, 6, 3> face_rotations(std::size_t f, const Points& x) const
-  {
-    const auto& t = (*faces_)[f];
-    Eigen::Matrix<double, 6, 3> r;
-    for(int k = 0; k < 3; ++k) {
-      for(int i = 0; i < 3; ++i)
-        r.template block<2, 1>(2 * i, k) = bases_[t[i]].transpose() * Eigen::Vector3d::Unit(k).cross(x[t[i]]);
-      const double length = r.col(k).norm();
-      for(int j = 0; j < k; ++j)  // Gram-Schmidt
-        r.col(k) -= r.col(j).dot(r.col(k)) * r.col(j);
-      const double left = r.col(k).norm();
-      if(left > 1e-8 * length)
-        r.col(k) /= left;
-      else
-        r.col(k).setZero();
-    }
-    return r;
-  }
-
-  void compute_bases(const Points& x)
-  {
-    bases_.resize(n_);
-    for(std::size_t v = 0; v < n_; ++v)
-      bases_[v] = tangent_basis(x[v]);
-  }
-
-  // A face's Hessian made PSD where the barrier does not hold it. With
-  // `drop_rotation_curvature`, its negative curvature along the rotations of its three
-  // points, which comes from the chart (the energy is invariant along them), is dropped
-  // rather than made absolute: made absolute, it adds about the face's energy to the
-  // stiffness of every smooth mode of the map, which is the order of those modes' own.
-  void project_free_face(Face_hessian& h, std::size_t f, const Points& x) const
-  {
-    if(drop_rotation_curvature_)
-      project_to_psd(h, face_rotations(f, x));
-    else
-      project_to_psd(h);
-  }
-
-  // A face the barrier holds keeps the absolute value of every negative eigenvalue: its
-  // gradient is the barrier's, which makes the curvature along its rotations large, and
-  // made absolute it damps the capped steps of the continuation and floor stages.
-  static void project_held_face(Face_hessian& h) { project_to_psd(h); }
-
-  // Per face: the tangent Hessian, projected to PSD if asked. Fills gradient_ (tangent),
-  // ambient_gradient_ and matrix_ (without shift).
   template <class Energy>
   void assemble(const Spherical_energy<Energy>& energy, const Points& x, bool projected)
   {
-    const std::size_t nf = faces_->size();
-    face_gradient_.resize(nf);
-    face_hessian_.resize(nf * lower_entries);
-    held_.resize(nf);
-    parallel_for<ConcurrencyTag>(nf, [&](std::size_t f) {
-      Triangle_jet jet = energy.template face<Triangle_jet>(f, x);
-      // The barrier is not convex in the points (det is trilinear): a face it holds gets
-      // its Hessian made positive definite, while the others keep their exact one.
-      const bool held = with_barrier_ && barrier<double>(f, x) > 0;
-      held_[f] = held;
-      if(held)
-        jet += barrier<Triangle_jet>(f, x);
-      face_gradient_[f] = jet.gradient;
-      Face_hessian h = tangent_hessian(f, jet.hessian);
-      if(held)
-        project_held_face(h);
-      else if(projected)
-        project_free_face(h, f, x);
-      store_lower(h, f);
-    });
-    sum_face_terms(x);
+    system_.assemble(
+      x, [&](std::size_t f, bool& held) { return face_jet(energy, x, f, held); }, projected,
+      drop_rotation_curvature_);
   }
 
-  // After an assembly of the exact Hessian at `x`: the same face terms with every face's
-  // Hessian projected, as `assemble(energy, x, true)` gives them, without evaluating the
-  // faces again (the projection reads only the lower triangle that the assembly kept).
-  void project_assembled_faces(const Points& x)
-  {
-    parallel_for<ConcurrencyTag>(faces_->size(), [&](std::size_t f) {
-      if(held_[f])
-        return;  // projected already
-      Face_hessian h;
-      const double* in = &face_hessian_[f * lower_entries];
-      for(int i = 0; i < 6; ++i)
-        for(int j = 0; j <= i; ++j)
-          h(i, j) = h(j, i) = *in++;
-      project_free_face(h, f, x);
-      store_lower(h, f);
-    });
-    sum_face_terms(x);
-  }
-
-  void store_lower(const Face_hessian& h, std::size_t f)
-  {
-    double* out = &face_hessian_[f * lower_entries];
-    for(int i = 0; i < 6; ++i)
-      for(int j = 0; j <= i; ++j)
-        *out++ = h(i, j);
-  }
-
-  // The matrix (without shift) and the gradients from the face terms.
-  void sum_face_terms(const Points& x)
-  {
-    std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
-    ambient_gradient_.assign(n_, Eigen::Vector3d::Zero());
-    for(std::size_t f = 0; f < faces_->size(); ++f) {
-      const auto& t = (*faces_)[f];
-      for(int i = 0; i < 3; ++i)
-        ambient_gradient_[t[i]] += face_gradient_[f].template segment<3>(3 * i);
-      const double* h = &face_hessian_[f * lower_entries];
-      const int* index = &entry_index_[f * lower_entries];
-      for(int k = 0; k < lower_entries; ++k)
-        if(index[k] >= 0)
-          matrix_.valuePtr()[index[k]] += h[k];
-    }
-    gradient_.resize(2 * free_);
-    for(std::size_t v = 0; v < free_; ++v) {
-      gradient_.template segment<2>(2 * v) = bases_[v].transpose() * ambient_gradient_[v];
-      // Second-order term of the retraction x = (p + B u) / |p + B u|: -<g_v, x_v> I_2.
-      const double curvature = -ambient_gradient_[v].dot(x[v]);
-      matrix_.valuePtr()[diagonal_index_[2 * v]] += curvature;
-      matrix_.valuePtr()[diagonal_index_[2 * v + 1]] += curvature;
-    }
-  }
-
-  // The exact Hessian with a shift of at most `max_exact_shift` of its mean diagonal; where that is not
-  // enough (strongly non-convex faces, such as a barrier or area term far from its minimum),
-  // the per-face projected Hessian, whose shift then only handles the curvature term.
   // Block Jacobi: each vertex's own 2x2 block of the exact Hessian, its eigenvalues replaced by
   // their absolute values (at least a small fraction of the block's size).
   // With a coarse correction c, a two-grid cycle on the Newton system H d = -g that shares
@@ -696,55 +434,34 @@ private:
                            const Coarse_correction* coarse_correction, Vector& d)
   {
     assemble(energy, x, false);
+    const Vector& gradient = system_.gradient();
     Vector coarse_step;
-    Vector residual = -gradient_;
-    if(coarse_correction && coarse_step_of(*coarse_correction, x, coarse_step))
-      residual.noalias() -= matrix_.template selfadjointView<Eigen::Lower>() * coarse_step;
-    block_jacobi(residual, d);
-    if(coarse_step.size() == 0)
+    if(!coarse_correction || !coarse_step_of(*coarse_correction, x, coarse_step)) {
+      system_.block_jacobi(-gradient, d);
       return false;
+    }
+    system_.block_jacobi(system_.residual(-gradient, coarse_step), d);
     d += coarse_step;
-    if(gradient_.dot(d) < 0)
+    if(gradient.dot(d) < 0)
       return true;
-    block_jacobi(-gradient_, d);
+    system_.block_jacobi(-gradient, d);
     return false;
   }
 
-  // The coarse correction of the gradient_, in the tangent charts; false if it failed.
+  // The coarse correction of the gradient, in the tangent charts; false if it failed.
   bool coarse_step_of(const Coarse_correction& coarse_correction, const Points& x, Vector& step) const
   {
-    std::vector<Eigen::Vector3d> gradient(n_, Eigen::Vector3d::Zero()), displacement;
-    for(std::size_t v = 0; v < free_; ++v)
-      gradient[v] = bases_[v] * gradient_.template segment<2>(2 * v);
-    if(!coarse_correction(x, gradient, displacement) || displacement.size() != n_)
+    std::vector<Eigen::Vector3d> displacement;
+    if(!coarse_correction(x, system_.ambient(system_.gradient()), displacement) || displacement.size() != n_)
       return false;
-    step.resize(2 * free_);
-    for(std::size_t v = 0; v < free_; ++v)
-      step.template segment<2>(2 * v) = bases_[v].transpose() * displacement[v];
+    step = system_.tangent(displacement);
     return step.allFinite();
   }
 
-  // d = J^-1 r for the block diagonal J of the assembled Hessian, each block's eigenvalues
-  // replaced by their absolute values, at least this share of the largest (a near-singular
-  // block, such as a vertex whose faces are all flat along one direction, must not blow up).
-  static constexpr double block_jacobi_floor = 1e-6;
-  void block_jacobi(const Vector& r, Vector& d) const
-  {
-    d.resize(2 * free_);
-    for(std::size_t v = 0; v < free_; ++v) {
-      const int k = diagonal_index_[2 * v];  // (2v, 2v), then (2v + 1, 2v) below it in the column
-      Eigen::Matrix2d block;
-      block << matrix_.valuePtr()[k], matrix_.valuePtr()[k + 1], matrix_.valuePtr()[k + 1],
-               matrix_.valuePtr()[diagonal_index_[2 * v + 1]];
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(block);
-      const double floor =
-        block_jacobi_floor * eigen.eigenvalues().cwiseAbs().maxCoeff() + std::numeric_limits<double>::min();
-      const Eigen::Vector2d inverse = eigen.eigenvalues().cwiseAbs().cwiseMax(floor).cwiseInverse();
-      d.template segment<2>(2 * v) =
-        (eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose()) * r.template segment<2>(2 * v);
-    }
-  }
-
+  // The exact Hessian with a shift of at most `max_exact_shift` of its mean diagonal; where
+  // that is not enough (strongly non-convex faces, such as a barrier or area term far from
+  // its minimum), the per-face projected Hessian, whose shift then only handles the
+  // curvature term.
   template <class Energy>
   bool newton_direction(const Spherical_energy<Energy>& energy, const Points& x, Vector& d)
   {
@@ -759,7 +476,7 @@ private:
       if(shifted_newton_direction(mu_exact_, false, max_exact_shift, d))
         return true;
       exact_pause_ = exact_pause_iterations;
-      project_assembled_faces(x);
+      system_.project_assembled_faces(x, drop_rotation_curvature_);
     } else {
       assemble(energy, x, true);
     }
@@ -772,37 +489,23 @@ private:
   // x the mean diagonal.
   bool shifted_newton_direction(double& mu, bool projected, double max_relative_shift, Vector& d)
   {
-    double mean_diagonal = 0;
-    for(std::size_t i = 0; i < 2 * free_; ++i)
-      mean_diagonal += std::abs(matrix_.valuePtr()[diagonal_index_[i]]);
-    mean_diagonal /= double(2 * free_);
+    const double mean_diagonal = system_.mean_abs_diagonal();
     if(!std::isfinite(mean_diagonal) || mean_diagonal == 0)
       return false;
     mu_floor_ = min_shift * mean_diagonal;
     mu = std::max(mu == 0 && !projected ? first_shift_ * mean_diagonal : mu, mu_floor_);
-    std::vector<double> diagonal(2 * free_);  // only the diagonal changes with the shift
-    for(std::size_t i = 0; i < 2 * free_; ++i)
-      diagonal[i] = matrix_.valuePtr()[diagonal_index_[i]];
+    const std::vector<double> diagonal = system_.diagonal();  // only the diagonal changes with the shift
     for(int attempt = 0; attempt < max_shift_attempts && mu <= max_relative_shift * mean_diagonal; ++attempt, mu *= shift_growth) {
-      for(std::size_t i = 0; i < 2 * free_; ++i)
-        matrix_.valuePtr()[diagonal_index_[i]] = diagonal[i] + mu;
-      factored_ = solver_.factorize(matrix_);
+      system_.set_shifted_diagonal(diagonal, mu);
+      factored_ = solver_.factorize(system_.matrix());
       if(factored_) {
         shift_raised_ = attempt > 0;
-        d = solver_.solve(-gradient_);
+        d = solver_.solve(-system_.gradient());
         return d.allFinite();
       }
     }
     mu = std::min(mu, max_relative_shift * mean_diagonal);
     return false;
-  }
-
-  std::vector<Eigen::Vector3d> ambient_step(const Vector& d) const
-  {
-    std::vector<Eigen::Vector3d> v(n_, Eigen::Vector3d::Zero());
-    for(std::size_t i = 0; i < free_; ++i)
-      v[i] = bases_[i] * d.template segment<2>(2 * i);
-    return v;
   }
 
   // The energy (with the barrier in a fold-free stage), faces evaluated in parallel with
@@ -831,7 +534,7 @@ private:
     probe_.resize(n_);
     const bool fold_free = count_bad_faces(*faces_, trial) == 0;
     for(double a = 2 * alpha; a <= max_step_extension; a *= 2) {
-      step_to(x, d, a, probe_);
+      system_.step_to(x, d, a, probe_);
       const double e_probe = total_energy(energy, probe_);
       if(!(e_probe < e) || (fold_free && count_bad_faces(*faces_, probe_) > 0))
         break;
@@ -842,20 +545,13 @@ private:
     return e;
   }
 
-  // The points `x` moved by `alpha d` in their tangent charts; the fixed vertices stay.
-  void step_to(const Points& x, const Vector& d, double alpha, Points& out) const
-  {
-    for(std::size_t v = 0; v < n_; ++v)
-      out[v] = v < free_ ? retract(x[v], bases_[v], alpha * d.template segment<2>(2 * v)) : x[v];
-  }
-
   // Armijo backtracking from `alpha`; returns the accepted energy (or +inf) with the point in `trial`.
   template <class Energy>
   double line_search(const Spherical_energy<Energy>& energy, const Points& x, const Vector& d, double e0,
                      double decrement, double& alpha, Points& trial)
   {
     for(int k = 0; k < max_halvings && alpha > 0; ++k, alpha *= 0.5) {
-      step_to(x, d, alpha, trial);
+      system_.step_to(x, d, alpha, trial);
       const double e = total_energy(energy, trial);
       if(std::isfinite(e) && e <= e0 - armijo * alpha * decrement)
         return e;
@@ -872,9 +568,7 @@ private:
   double floor_ = 0;  // the barrier's activation
   double outer_weight_ = 0;
   double floored_activation_ = 0;
-  Matrix matrix_;
-  std::vector<int> entry_index_;
-  std::vector<int> diagonal_index_;
+  System system_;
   SparseSolver solver_;
   bool factored_ = false;  // the last factorization succeeded: `solver_` holds a factor
   bool projected_ = false;  // the last Newton direction came from the projected Hessian
@@ -883,14 +577,7 @@ private:
   double mu_exact_ = 0, mu_projected_ = 0, mu_floor_ = 0;
   double first_shift_ = 1e-4;  // Newton_options::first_shift of the minimization under way
   bool boost_search_ = false;   // Newton_options::boost_search of the minimization under way
-
-  std::vector<Basis> bases_;
-  std::vector<Triangle_jet::Gradient> face_gradient_;
-  std::vector<double> face_hessian_;
-  std::vector<char> held_;  // per face: held by the fold barrier at the last assembly
-  std::vector<double> face_value_;
-  std::vector<Eigen::Vector3d> ambient_gradient_;
-  Vector gradient_;
+  std::vector<double> face_value_;  // per face, the energy or a flag of the last evaluation
   Points probe_;  // the points of a step's extension
 };
 
