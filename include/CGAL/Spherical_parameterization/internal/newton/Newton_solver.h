@@ -131,8 +131,7 @@ public:
     }
     if(options.fold_free_iterate && count_bad_faces(*faces_, x) == 0)
       *options.fold_free_iterate = x;
-    std::size_t folded = 0;  // consecutive folded iterates
-    std::size_t last_bad = 0;  // folded and degenerate faces of the last iterate
+    Folded_iterates folded;
     Points trial(x.size());
     std::vector<double> history{e};  // energy after each iteration, for the stall test
     double last_full_decrement = 0;  // of the last iteration if its step was a full Newton step, else 0
@@ -194,13 +193,10 @@ public:
       x.swap(trial);
       capped_steps = capped ? capped_steps + 1 : 0;
       if(options.fold_free_iterate) {
-        const std::size_t bad = count_bad_faces(*faces_, x);
-        const bool unfolding = 2 * bad <= last_bad;
-        folded = bad == 0 ? 0 : (unfolding && !options.count_unfolding_iterates ? folded : folded + 1);
-        last_bad = bad;
-        if(folded == 0)
+        folded.record(count_bad_faces(*faces_, x), options.count_unfolding_iterates);
+        if(folded.in_a_row == 0)
           *options.fold_free_iterate = x;
-        else if(folded > options.max_folded_iterations) {
+        else if(folded.in_a_row > options.max_folded_iterations) {
           ++out.iterations;
           out.stop = Newton_stop::FOLDED;
           break;
@@ -214,14 +210,7 @@ public:
       out.energy = e;
       relax_shifts(alpha >= 1, smoothing);
 
-      Progress p;
-      p.stage = options.stage;
-      p.iteration = options.iteration_offset + out.iterations;
-      p.energy = e;
-      p.newton_decrement = decrement;
-      p.step = alpha;
-      p.elapsed_seconds = std::chrono::duration<double>(Clock::now() - options.start).count();
-      if(!visitor(p)) { out.stop = Newton_stop::CANCELLED; break; }
+      if(!visitor(progress(options, out.iterations, e, decrement, alpha))) { out.stop = Newton_stop::CANCELLED; break; }
       history.push_back(e);
       // A full Newton step that decreased the energy as its model predicted, with a decrement
       // close to the tolerance, or one whose successor, predicted from the last two decrements,
@@ -249,7 +238,7 @@ public:
         out.stop = Newton_stop::CONVERGED;
         break;
       }
-      if(options.leave_under_floor && options.fold_free_iterate && folded == 0 && model_held &&
+      if(options.leave_under_floor && options.fold_free_iterate && folded.in_a_row == 0 && model_held &&
          predicted <= threshold && !is_above_floor(x, options.fold_floor)) {
         out.stop = Newton_stop::UNDER_FLOOR;
         break;
@@ -360,6 +349,35 @@ private:
     if(exact_pause_ == 0)
       mu_exact_ = std::max(mu_exact_ / relax, mu_floor_);
     mu_projected_ = std::max(mu_projected_ / relax, mu_floor_);
+  }
+
+  // The folded iterates in a row (`Newton_options::max_folded_iterations`); unless
+  // `count_unfolding_iterates`, one with at most half the bad faces of the last iterate
+  // does not count, so that a map being untangled is not stopped while it gets better.
+  struct Folded_iterates
+  {
+    std::size_t in_a_row = 0;
+    std::size_t last_bad = 0;  // folded and degenerate faces of the last iterate
+
+    void record(std::size_t bad, bool count_unfolding)
+    {
+      const bool unfolding = 2 * bad <= last_bad;
+      in_a_row = bad == 0 ? 0 : (unfolding && !count_unfolding ? in_a_row : in_a_row + 1);
+      last_bad = bad;
+    }
+  };
+
+  // What the visitor gets after an iteration.
+  static Progress progress(const Newton_options& options, std::size_t iterations, double e, double decrement, double alpha)
+  {
+    Progress p;
+    p.stage = options.stage;
+    p.iteration = options.iteration_offset + iterations;
+    p.energy = e;
+    p.newton_decrement = decrement;
+    p.step = alpha;
+    p.elapsed_seconds = std::chrono::duration<double>(Clock::now() - options.start).count();
+    return p;
   }
 
   // Whether the next iteration skips its Moebius boost step: when the last one gained less
