@@ -194,7 +194,7 @@ void test_kernel_placement()
     star_inside += I::fan_clearance(I::place_in_kernel(star, star_fan, outside), star, star_fan) > 0;
     // A bow tie, (0,0) (1,1) (1,0) (0,1): no point sees all its edges from the left.
     I::Points bow_tie;
-    for(const Eigen::Vector2d corner : {Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1), Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1)})
+    for(const Eigen::Vector2d& corner : {Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1), Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1)})
       bow_tie.push_back((center + 0.05 * (I::tangent_basis(center) * corner)).normalized());
     const I::Fan bow_tie_fan = fan_of_ring(0, 4);
     empty_reported += !(I::fan_clearance(I::place_in_kernel(bow_tie, bow_tie_fan, center), bow_tie, bow_tie_fan) > 0);
