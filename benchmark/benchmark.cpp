@@ -454,24 +454,11 @@ struct Yardstick
   bool cotangent = true;  // false: the uniform graph Laplacian was used
 };
 
-// The package's supernode sizes for CHOLMOD (see Cholmod_traits); nothing for Eigen.
-template <class Solver>
-void use_package_settings(Solver&)
-{
-}
-#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD
-template <class Matrix, int UpLo>
-void use_package_settings(Eigen::CholmodSupernodalLLT<Matrix, UpLo>& solver)
-{
-  CGAL::Spherical_parameterization::Cholmod_traits::relax_supernodes(solver.cholmod());
-}
-#endif
-
 // Median of 3 times of (symbolic analysis + numeric factorization + one solve) with
 // `Solver`; negative if it failed. CHOLMOD's OpenMP regions run as in the package's runs
-// (inline, by the process tuning of main()) and its supernodes are as coarse as in the
-// package's own factorizations (Cholmod_traits): the yardstick is not to carry an overhead
-// that the package's runs avoid. OpenBLAS has its own thread count, and with `huge_pages`
+// (inline, by the process tuning of main()): the yardstick is not to carry an overhead that
+// the package's runs avoid. Its supernodes are CHOLMOD's own, as in the package's
+// factorizations (Cholmod_traits). OpenBLAS has its own thread count, and with `huge_pages`
 // CHOLMOD's large blocks are on transparent huge pages, which make some factorizations
 // faster and others slower (tools/process_tuning.h).
 template <class Solver>
@@ -482,7 +469,6 @@ double solve_time(const Sparse& matrix, const Eigen::VectorXd& rhs, bool huge_pa
   for(int r = 0; r < 3; ++r) {
     const Clock::time_point start = Clock::now();
     Solver solver;
-    use_package_settings(solver);
     solver.compute(matrix);
     if(solver.info() != Eigen::Success)
       return -1;

@@ -47,12 +47,9 @@ private:
 /// large meshes. Available when `CGAL_SPHERICAL_PARAMETERIZATION_USE_CHOLMOD` is defined.
 /// CHOLMOD chooses per matrix between its supernodal factorization (dense BLAS blocks) and
 /// its simplicial one, by the flops per entry of the factor: supernodal from 40 on
-/// (CHOLMOD's default switch). The supernodes are coarser than CHOLMOD's default: up to 16,
-/// 48 and 96 columns merged whatever the zeros they add, under 80% and under 10% of zeros
-/// (`nrelax`; CHOLMOD's default 4, 16, 48), as each supernode costs BLAS calls. Coarser
-/// supernodes (32, 96, 192) and a higher switch (80) are faster when CHOLMOD's OpenMP
-/// regions run on several threads; these are faster when they run on the calling thread
-/// (see below), as in the benchmark, and they also make a smaller factor (see doc/DESIGN.md).
+/// (CHOLMOD's default switch). The supernodes are CHOLMOD's own (`nrelax` 4, 16, 48): coarser
+/// ones save BLAS calls but store more zeros, and on the 2x2 blocks of the Newton matrices
+/// the smaller factor is the faster one (see doc/DESIGN.md).
 /// From 50000 vertices on, the fill-reducing ordering is METIS's on the mesh's vertex graph,
 /// expanded to the two unknowns of each vertex (a matrix of even size is taken to be made of
 /// such 2x2 blocks; any other matrix is still factored correctly, perhaps with more fill):
@@ -87,7 +84,6 @@ public:
     // indefinite matrix without failing (test_parameterizer), and the failure is how the
     // Newton solver learns that its shift is too small.
     c.final_ll = 1;
-    relax_supernodes(c);
   }
 
   void analyze_pattern(const Matrix& m)
@@ -118,19 +114,11 @@ public:
 
   /// True if the last analysis chose the supernodal factorization.
   bool is_supernodal() const { return solver_.is_supernodal(); }
-
-  /// Sets in `c` the supernode sizes described above (the benchmark's yardstick uses them).
-  static void relax_supernodes(cholmod_common& c)
-  {
-    for(int i = 0; i < 3; ++i)
-      c.nrelax[i] = relaxed_columns[i];
-  }
   /// \endcond
 
 private:
   static constexpr Eigen::Index vertex_ordering_from = 50000;  // vertices
   static constexpr double supernodal_from = 40;                // flops per entry of the factor
-  static constexpr std::size_t relaxed_columns[3] = {16, 48, 96};  // see the class comment
   internal::Vertex_ordered_cholmod<Matrix> solver_;
 };
 
