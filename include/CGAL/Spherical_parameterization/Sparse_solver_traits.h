@@ -49,7 +49,9 @@ private:
 /// its simplicial one, by the flops per entry of the factor: supernodal from 40 on
 /// (CHOLMOD's default switch). The supernodes are CHOLMOD's own (`nrelax` 4, 16, 48): coarser
 /// ones save BLAS calls but store more zeros, and on the 2x2 blocks of the Newton matrices
-/// the smaller factor is the faster one (see doc/DESIGN.md).
+/// the smaller factor is the faster one when CHOLMOD's OpenMP regions run on the calling
+/// thread (see below); when they go through OpenMP's thread team, the larger meshes still
+/// gain and the smaller ones may lose (see doc/DESIGN.md).
 /// From 50000 vertices on, the fill-reducing ordering is METIS's on the mesh's vertex graph,
 /// expanded to the two unknowns of each vertex (a matrix of even size is taken to be made of
 /// such 2x2 blocks; any other matrix is still factored correctly, perhaps with more fill):
