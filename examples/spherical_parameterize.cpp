@@ -268,6 +268,8 @@ std::string quote_status(const SP::Result& r)
 {
   std::string s = std::string(r.message());
   if(!r.detail.empty()) s += " (" + r.detail + ")";
+  if(r.status == SP::Error_code::NOT_CONVERGED && std::isfinite(r.energy))
+    s += "; --max-iterations N raises it";
   return s;
 }
 

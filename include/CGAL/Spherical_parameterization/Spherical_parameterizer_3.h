@@ -291,6 +291,8 @@ private:
     else if(!std::isfinite(result.energy))
       // No stage can minimize an energy it cannot evaluate: the map is a valid start, not a minimum.
       result.detail = "the energy is not finite on the map";
+    else if(result.status == Error_code::NOT_CONVERGED)
+      result.detail = "the input's last stage reached the cap on iterations per stage";
   }
 
   template <class SphereMap>
