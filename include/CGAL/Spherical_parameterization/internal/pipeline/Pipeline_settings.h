@@ -28,9 +28,15 @@ struct Pipeline_settings
   /// Tolerance of the levels between the coarsest and the input, at least: looser cost the
   /// input level more, tighter gain nothing.
   double level_tolerance = 1e-5;
-  /// From this input size on, the input's first step is a two-grid cycle with the last
+  /// From this input size on, the input's first steps are two-grid cycles with the last
   /// level's factorization: block Jacobi alone no longer reaches the smooth error.
   std::size_t two_grid_vertices = 50000;
+  /// The number of those cycles for energies with an area barrier (the default; one for the
+  /// others), each about a third of a Newton iteration's cost. Their projected Newton steps
+  /// converge linearly, so cheap cycles pay while the last level's Hessian, factored at that
+  /// level's own minimum, still models the error the splits leave; after a few, it no
+  /// longer does.
+  std::size_t two_grid_cycles = 3;
   /// With the two-grid cycle, the input's first shift is this over its vertex count (about a
   /// fifth of the smooth modes' curvature, 7 / n of the mean diagonal)...
   double two_grid_shift_numerator = 1.5;

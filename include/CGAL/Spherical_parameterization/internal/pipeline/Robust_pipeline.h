@@ -112,7 +112,8 @@ public:
       hierarchy = std::make_unique<Progressive_mesh>(input_.soup,
                                                      n <= 2 * settings_.coarse_vertices ? n : settings_.coarse_vertices);
     const bool two_grid = n > settings_.two_grid_vertices;
-    Coarse_to_fine<Newton, ConcurrencyTag> levels(input_.soup, *hierarchy, settings_.level_ratio, two_grid);
+    Coarse_to_fine<Newton, ConcurrencyTag> levels(input_.soup, *hierarchy, settings_.level_ratio,
+                                                  two_grid ? two_grid_cycles() : 0);
     const Coarse_correction coarse_correction = [&levels](const auto& map, const auto& gradient, auto& step) {
       return levels.coarse_correction(map, gradient, step);
     };
@@ -182,8 +183,8 @@ private:
   }
 
   // A level after its vertex splits, fold-free: a few iterations for a coarser level, whose
-  // map is only the next level's start; the input to the tolerance, its first step a
-  // two-grid cycle if given one.
+  // map is only the next level's start; the input to the tolerance, its first steps
+  // two-grid cycles if given a coarse correction.
   Level_outcome after_splits(Level& level, Points& x, const Level_role& role, const Coarse_correction* two_grid)
   {
     Newton_options options = options_;
@@ -197,13 +198,20 @@ private:
       options.max_iterations = std::min(options.max_iterations, settings_.level_iterations);
       options.tolerance = std::max(options.tolerance, settings_.level_tolerance);
     }
-    // One smoothing step first: most of the error a split leaves is local.
-    return fold_free_minimization(level, x, role, options, 1, role.is_input ? two_grid : nullptr);
+    // One smoothing step first: most of the error a split leaves is local; on a large input,
+    // the two-grid cycles.
+    const bool cycles = role.is_input && two_grid;
+    return fold_free_minimization(level, x, role, options, cycles ? two_grid_cycles() : 1, cycles ? two_grid : nullptr);
   }
 
+  // The input's two-grid cycles (`Pipeline_settings::two_grid_cycles`): one for the paper's
+  // energies, whose exact Hessian takes over near their minima, so that a Newton iteration
+  // gains more there than further cycles.
+  std::size_t two_grid_cycles() const { return has_area_barrier(energy_) ? settings_.two_grid_cycles : 1; }
+
   // The chosen energy from a fold-free map: the optimistic stage, then what `next_stage()`
-  // says. `smoothing`: block Jacobi iterations first (after vertex splits), the first a
-  // two-grid cycle with `two_grid`.
+  // says. `smoothing`: block Jacobi iterations first (after vertex splits), two-grid cycles
+  // with `two_grid`.
   Level_outcome fold_free_minimization(Level& level, Points& x, const Level_role& role, const Newton_options& options,
                                        std::size_t smoothing, const Coarse_correction* two_grid)
   {
