@@ -110,10 +110,9 @@ template <class Newton, class ConcurrencyTag = CGAL::Sequential_tag>
 class Coarse_to_fine
 {
 public:
-  /// `two_grid_cycles`: keep the last level before the input for that many calls of
-  /// `coarse_correction()` (0: none).
-  Coarse_to_fine(const Triangle_soup& input, const Progressive_mesh& pm, double ratio, std::size_t two_grid_cycles = 0)
-    : input_(&input), refinement_(pm), two_grid_cycles_(two_grid_cycles)
+  /// `two_grid`: keep the last level before the input for `coarse_correction()`.
+  Coarse_to_fine(const Triangle_soup& input, const Progressive_mesh& pm, double ratio, bool two_grid = false)
+    : input_(&input), refinement_(pm), two_grid_(two_grid)
   {
     for(double size = double(refinement_.number_of_vertices()) * ratio; size * std::sqrt(ratio) < double(input.number_of_vertices());
         size *= ratio)
@@ -141,7 +140,7 @@ public:
   {
     if(next_size_ == sizes_.size())
       return false;
-    const bool for_two_grid = two_grid_cycles_ > 0 && last_before_input();
+    const bool for_two_grid = two_grid_ && last_before_input();
     split_rings_.clear();
     while(refinement_.number_of_vertices() < sizes_[next_size_]) {
       // A batch of independent splits: the placements read only their rings' points, none
@@ -182,31 +181,15 @@ public:
   /// Hessian, and the level's step prolongated to the input. Restriction and prolongation
   /// follow the vertex splits in between: each split vertex moves with the mean of its ring.
   /// The level's step leaves out the rotations and Moebius boosts of the map `x` (see
-  /// `remove_global_modes()`). That level and its factor are freed after the last of the
-  /// `two_grid_cycles` calls, or after a failed one. False if that level or its
-  /// factorization is gone.
+  /// `remove_global_modes()`). Used once: that level and its factor are freed after. False
+  /// if that level or its factorization is gone.
   bool coarse_correction(const Points& x, const std::vector<Eigen::Vector3d>& gradient,
                          std::vector<Eigen::Vector3d>& step)
   {
-    if(!last_level_)
+    const std::unique_ptr<Level<Newton>> used = std::move(last_level_);
+    if(!used || gradient.size() != input_->number_of_vertices() || x.size() != gradient.size())
       return false;
-    ++coarse_corrections_;
-    const bool made = coarse_step(*last_level_, x, gradient, step);
-    if(!made || coarse_corrections_ >= two_grid_cycles_)
-      last_level_.reset();
-    return made;
-  }
-
-  /// The rings of the splits from the last level to the input, once they are made.
-  const Split_rings& split_rings() const { return split_rings_; }
-
-private:
-  // `coarse_correction()` with `level`.
-  bool coarse_step(const Level<Newton>& level, const Points& x, const std::vector<Eigen::Vector3d>& gradient,
-                   std::vector<Eigen::Vector3d>& step) const
-  {
-    if(gradient.size() != input_->number_of_vertices() || x.size() != gradient.size())
-      return false;
+    const Level<Newton>& level = *used;
     std::vector<Eigen::Vector3d> restricted = gradient;
     split_rings_.transpose_spread(restricted);
     const auto& bases = level.solver->bases();
@@ -230,6 +213,10 @@ private:
     return true;
   }
 
+  /// The rings of the splits from the last level to the input, once they are made.
+  const Split_rings& split_rings() const { return split_rings_; }
+
+private:
   // The current level: the one prepared while the level before ran, if any; then the next
   // level's preparation starts.
   void make_level()
@@ -278,8 +265,7 @@ private:
   const Triangle_soup* input_;
   Refinement refinement_;
   std::optional<Refinement> topology_ahead_;  // the mesh of the level under preparation, see prepare_next_level()
-  std::size_t two_grid_cycles_;
-  std::size_t coarse_corrections_ = 0;  // calls of coarse_correction() so far
+  bool two_grid_;
   std::vector<std::size_t> sizes_;  // of the levels after the coarsest, the input's last
   std::size_t next_size_ = 0;
   std::unique_ptr<Level<Newton>> level_, last_level_;

@@ -68,9 +68,8 @@ struct Newton_options
   /// starts are far from a minimum, and growing the shift from its floor costs failed
   /// factorizations.
   double first_shift = 1e-4;
-  /// With `smoothing_iterations`: the smoothing steps are two-grid cycles, this coarse
-  /// correction of the map followed by block Jacobi (`Newton_solver::smoothing_direction()`),
-  /// while it makes them.
+  /// With `smoothing_iterations`: the first smoothing step is a two-grid cycle, this coarse
+  /// correction of the map followed by block Jacobi (`Newton_solver::smoothing_direction()`).
   const Coarse_correction* coarse_correction = nullptr;
   /// Before every Newton iteration, a Newton step on the three parameters of a Moebius
   /// boost of the whole map (`boost_step()`), the directions in which the energies of

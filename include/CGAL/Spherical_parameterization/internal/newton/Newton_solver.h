@@ -149,7 +149,7 @@ public:
       const bool smoothing = out.iterations < options.smoothing_iterations;
       bool two_grid = false;
       if(smoothing)
-        two_grid = smoothing_direction(energy, x, options.coarse_correction, d);
+        two_grid = smoothing_direction(energy, x, out.iterations == 0 ? options.coarse_correction : nullptr, d);
       else if(!newton_direction(energy, x, d)) { out.stop = Newton_stop::STALLED; break; }
 
       double decrement = -system_.gradient().dot(d);
@@ -272,7 +272,7 @@ public:
 
   /// Frees the matrix and the per-face buffers, keeping the last factor and `bases()`: after
   /// this the solver can only `solve_with_last_factor()`. The level kept for the input's
-  /// two-grid cycles would otherwise hold them through those cycles.
+  /// two-grid cycle would otherwise hold them until the input's first step.
   void keep_only_last_factor()
   {
     system_.keep_only_bases();

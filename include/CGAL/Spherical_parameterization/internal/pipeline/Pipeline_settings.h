@@ -28,20 +28,22 @@ struct Pipeline_settings
   /// Tolerance of the levels between the coarsest and the input, at least: looser cost the
   /// input level more, tighter gain nothing.
   double level_tolerance = 1e-5;
-  /// From this input size on, the input's first steps are two-grid cycles with the last
-  /// level's factorization: block Jacobi alone no longer reaches the smooth error.
-  std::size_t two_grid_vertices = 50000;
-  /// The number of those cycles for energies with an area barrier (the default; one for the
-  /// others), each about a third of a Newton iteration's cost. Their projected Newton steps
-  /// converge linearly, so cheap cycles pay while the last level's Hessian, factored at that
-  /// level's own minimum, still models the error the splits leave; after a few, it no
-  /// longer does.
-  std::size_t two_grid_cycles = 3;
-  /// With the two-grid cycle, the input's first shift is this over its vertex count (about a
-  /// fifth of the smooth modes' curvature, 7 / n of the mean diagonal)...
-  double two_grid_shift_numerator = 1.5;
+  /// From this input size on, the input starts differently after its splits: its Newton
+  /// shift starts lower, and its first step is a two-grid cycle with the last level's
+  /// factorization, which reaches the smooth error block Jacobi does not (energies without an
+  /// area barrier), or `input_smoothing_steps` block Jacobi steps (energies with one).
+  std::size_t large_input_vertices = 50000;
+  /// For energies with an area barrier (the default). There a two-grid cycle's coarse step
+  /// flips some of the input's faces, where the area term is infinite, so the line search
+  /// cuts it to 1/128 to 1/4 of its length and the cycle does no better than block Jacobi;
+  /// and their projected Newton steps converge linearly, so block Jacobi steps, each about a
+  /// third of a Newton iteration's cost, pay.
+  std::size_t input_smoothing_steps = 3;
+  /// On a large input, the first shift is this over its vertex count (about a fifth of the
+  /// smooth modes' curvature, 7 / n of the mean diagonal)...
+  double large_input_shift_numerator = 1.5;
   /// ... but at least this: smaller shifts slow the largest inputs down.
-  double two_grid_min_shift = 1e-5;
+  double large_input_min_shift = 1e-5;
 
   // The fold-free minimization of a level
 

@@ -111,9 +111,8 @@ public:
     if(!hierarchy)
       hierarchy = std::make_unique<Progressive_mesh>(input_.soup,
                                                      n <= 2 * settings_.coarse_vertices ? n : settings_.coarse_vertices);
-    const bool two_grid = n > settings_.two_grid_vertices;
-    Coarse_to_fine<Newton, ConcurrencyTag> levels(input_.soup, *hierarchy, settings_.level_ratio,
-                                                  two_grid ? two_grid_cycles() : 0);
+    const bool two_grid = n > settings_.large_input_vertices && !has_area_barrier(energy_);
+    Coarse_to_fine<Newton, ConcurrencyTag> levels(input_.soup, *hierarchy, settings_.level_ratio, two_grid);
     const Coarse_correction coarse_correction = [&levels](const auto& map, const auto& gradient, auto& step) {
       return levels.coarse_correction(map, gradient, step);
     };
@@ -183,35 +182,31 @@ private:
   }
 
   // A level after its vertex splits, fold-free: a few iterations for a coarser level, whose
-  // map is only the next level's start; the input to the tolerance, its first steps
-  // two-grid cycles if given a coarse correction.
+  // map is only the next level's start; the input to the tolerance, its first step a
+  // two-grid cycle if given one.
   Level_outcome after_splits(Level& level, Points& x, const Level_role& role, const Coarse_correction* two_grid)
   {
     Newton_options options = options_;
+    const bool large_input = role.is_input && level.number_of_vertices() > settings_.large_input_vertices;
     if(role.is_input) {
       options.predict_convergence = true;
       options.leave_under_floor = true;
-      if(two_grid)
-        options.first_shift = std::max(settings_.two_grid_shift_numerator / double(level.number_of_vertices()),
-                                       settings_.two_grid_min_shift);
+      if(large_input)
+        options.first_shift = std::max(settings_.large_input_shift_numerator / double(level.number_of_vertices()),
+                                       settings_.large_input_min_shift);
     } else {
       options.max_iterations = std::min(options.max_iterations, settings_.level_iterations);
       options.tolerance = std::max(options.tolerance, settings_.level_tolerance);
     }
-    // One smoothing step first: most of the error a split leaves is local; on a large input,
-    // the two-grid cycles.
-    const bool cycles = role.is_input && two_grid;
-    return fold_free_minimization(level, x, role, options, cycles ? two_grid_cycles() : 1, cycles ? two_grid : nullptr);
+    // One smoothing step first: most of the error a split leaves is local; on a large input
+    // and an energy with an area barrier, `input_smoothing_steps`.
+    const std::size_t smoothing = large_input && has_area_barrier(energy_) ? settings_.input_smoothing_steps : 1;
+    return fold_free_minimization(level, x, role, options, smoothing, role.is_input ? two_grid : nullptr);
   }
 
-  // The input's two-grid cycles (`Pipeline_settings::two_grid_cycles`): one for the paper's
-  // energies, whose exact Hessian takes over near their minima, so that a Newton iteration
-  // gains more there than further cycles.
-  std::size_t two_grid_cycles() const { return has_area_barrier(energy_) ? settings_.two_grid_cycles : 1; }
-
   // The chosen energy from a fold-free map: the optimistic stage, then what `next_stage()`
-  // says. `smoothing`: block Jacobi iterations first (after vertex splits), two-grid cycles
-  // with `two_grid`.
+  // says. `smoothing`: block Jacobi iterations first (after vertex splits), the first a
+  // two-grid cycle with `two_grid`.
   Level_outcome fold_free_minimization(Level& level, Points& x, const Level_role& role, const Newton_options& options,
                                        std::size_t smoothing, const Coarse_correction* two_grid)
   {
