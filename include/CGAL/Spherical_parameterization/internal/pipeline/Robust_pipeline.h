@@ -111,6 +111,8 @@ public:
     if(!hierarchy)
       hierarchy = std::make_unique<Progressive_mesh>(input_.soup,
                                                      n <= 2 * settings_.coarse_vertices ? n : settings_.coarse_vertices);
+    // A large input's two-grid cycle, for energies without an area barrier only (see
+    // `Pipeline_settings::input_smoothing_steps`).
     const bool two_grid = n > settings_.large_input_vertices && !has_area_barrier(energy_);
     Coarse_to_fine<Newton, ConcurrencyTag> levels(input_.soup, *hierarchy, settings_.level_ratio, two_grid);
     const Coarse_correction coarse_correction = [&levels](const auto& map, const auto& gradient, auto& step) {
