@@ -113,7 +113,7 @@ public:
                                                      n <= 2 * settings_.coarse_vertices ? n : settings_.coarse_vertices);
     // A large input's two-grid cycle, for energies without an area barrier only (see
     // `Pipeline_settings::input_smoothing_steps`).
-    const bool two_grid = n > settings_.large_input_vertices && !has_area_barrier(energy_);
+    const bool two_grid = is_large_input() && !has_area_barrier(energy_);
     Coarse_to_fine<Newton, ConcurrencyTag> levels(input_.soup, *hierarchy, settings_.level_ratio, two_grid);
     const Coarse_correction coarse_correction = [&levels](const auto& map, const auto& gradient, auto& step) {
       return levels.coarse_correction(map, gradient, step);
@@ -155,6 +155,9 @@ public:
 private:
   Level_role input_role() const { return {input_.number_of_vertices(), true, false, false}; }
 
+  // The input starts differently after its splits (`Pipeline_settings::large_input_vertices`).
+  bool is_large_input() const { return input_.number_of_vertices() > settings_.large_input_vertices; }
+
   // From a start of degree 1: Tutte with the d_min barrier while faces are folded (fold-free
   // on most meshes), untangling if that is not enough, then the chosen energy without ever
   // letting a face flip. A start that stays folded may hold a face at the hemisphere barrier,
@@ -189,7 +192,7 @@ private:
   Level_outcome after_splits(Level& level, Points& x, const Level_role& role, const Coarse_correction* two_grid)
   {
     Newton_options options = options_;
-    const bool large_input = role.is_input && level.number_of_vertices() > settings_.large_input_vertices;
+    const bool large_input = role.is_input && is_large_input();
     if(role.is_input) {
       options.predict_convergence = true;
       options.leave_under_floor = true;
