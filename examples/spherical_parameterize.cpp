@@ -11,7 +11,8 @@
 // OUTPUT (.off or .obj) has the input's vertices in the same order and the same faces.
 // The options after --quiet use the map once it is computed, and write nothing if it is not
 // valid (see the usage string below for each).
-// Exit status: 0 for a valid map, 2 for a map that is not valid, 1 for bad input or usage.
+// Exit status: 0 for a valid map, 2 for a map that is not valid, 1 for bad input or usage
+// (every input file and output path is checked before the solve: nothing written).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
@@ -347,6 +348,50 @@ void write_stream(const std::string& path, std::ios::openmode mode, const std::f
   });
 }
 
+// Fails unless `path` ends in one of `extensions` and its folder exists.
+void check_output_path(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions)
+{
+  const std::filesystem::path file(path);
+  if(std::find(extensions.begin(), extensions.end(), file.extension().string()) == extensions.end()) {
+    std::string allowed;
+    for(const std::string& e : extensions) allowed += (allowed.empty() ? "" : ", ") + e;
+    fail("cannot write " + path + flag + ": use " + allowed);
+  }
+  std::error_code error;
+  if(file.has_parent_path() && !std::filesystem::is_directory(file.parent_path(), error))
+    fail("cannot write " + path + flag + ": no folder " + file.parent_path().string());
+}
+
+// True if the two paths name the same file, existing or not.
+bool same_file(const std::string& a, const std::string& b)
+{
+  std::error_code error;
+  return std::filesystem::weakly_canonical(a, error) == std::filesystem::weakly_canonical(b, error);
+}
+
+// Every output is checked before the solve, so that a wrong path costs no solve and leaves no
+// partial set of outputs behind; none may be a file the tool reads, or another output.
+void check_output_paths(const Options& o)
+{
+  check_output_path("", o.output, {".off", ".obj"});
+  if(!o.icosphere_output.empty()) check_output_path(" (--remesh-icosphere)", o.icosphere_output, {".off", ".obj"});
+  if(!o.image_output.empty()) check_output_path(" (--geometry-image)", o.image_output, {".pfm", ".off", ".obj"});
+  if(!o.map_output.empty()) check_output_path(" (--map-to)", o.map_output, {".off", ".obj"});
+  if(!o.texture_output.empty()) check_output_path(" (--texture)", o.texture_output, {".obj"});
+
+  std::vector<std::string> outputs{o.output, o.icosphere_output, o.image_output, o.map_output, o.texture_output};
+  const std::vector<std::string> inputs{o.input, o.init, o.other_mesh, o.other_sphere, o.landmarks};
+  outputs.erase(std::remove(outputs.begin(), outputs.end(), std::string()), outputs.end());
+  for(std::size_t i = 0; i < outputs.size(); ++i) {
+    for(const std::string& input : inputs)
+      if(!input.empty() && same_file(outputs[i], input))
+        fail("cannot write " + outputs[i] + ": the tool reads that file");
+    for(std::size_t j = 0; j < i; ++j)
+      if(same_file(outputs[i], outputs[j]))
+        fail("cannot write " + outputs[i] + " twice");
+  }
+}
+
 // The energy of the options: the balanced energy at the knob, unless weights are given.
 std::optional<SP::Energy_mix> energy_of(const Options& o)
 {
@@ -406,11 +451,8 @@ void write_icosphere_remesh(const Options& o, const Mesh& mesh, const Point_loca
 
 void write_geometry_image(const Options& o, const Point_location& location)
 {
-  const std::string ext = extension(o.image_output);
-  if(ext != ".pfm" && ext != ".off" && ext != ".obj")
-    fail("cannot write " + o.image_output + ": use .pfm (float image), .off or .obj (mesh)");
   const SP::Geometry_image image = SP::make_geometry_image(location, o.image_size);
-  if(ext == ".pfm") {
+  if(extension(o.image_output) == ".pfm") {
     write_stream(o.image_output, std::ios::binary,
                  [&image](std::ostream& out) { return SP::write_geometry_image_PFM(out, image); });
   } else {
@@ -460,27 +502,41 @@ double landmark_misfit(const Sphere_map& a, const Sphere_map& b, const Landmarks
   return landmarks.empty() ? 0 : std::sqrt(sum / landmarks.size()) * 180 / M_PI;
 }
 
-void write_map_to_other(const Options& o, const Mesh& mesh, const Sphere_map& sphere)
+// The other surface of --map-to with its sphere map and the landmarks, read and checked
+// before the solve.
+struct Other_surface
 {
-  Mesh other = read_mesh(o.other_mesh, o.orient);
-  const Mesh other_points_on_sphere = read_mesh(o.other_sphere);
-  if(other_points_on_sphere.number_of_vertices() != other.number_of_vertices() ||
-     other_points_on_sphere.number_of_faces() != other.number_of_faces())
-    fail(o.other_sphere + " does not have the vertices and faces of " + o.other_mesh);
-  Sphere_map other_sphere = other.add_property_map<Mesh::Vertex_index, Point>("v:sphere", CGAL::ORIGIN).first;
-  auto on_sphere = other_points_on_sphere.vertices().begin();
-  for(auto v : other.vertices()) other_sphere[v] = other_points_on_sphere.point(*on_sphere++);
-  if(!CGAL::is_triangle_mesh(other) || !SP::measure_distortion(other, other_sphere).is_valid())
-    fail(o.other_sphere + " is not a valid sphere map of " + o.other_mesh);
+  Mesh mesh;
+  Sphere_map sphere;  // a property of `mesh`: filled in place, never copied
+  std::vector<std::pair<Mesh::Vertex_index, Mesh::Vertex_index>> landmarks;
+};
 
+void read_other_surface(const Options& o, std::size_t input_vertices, Other_surface& other)
+{
+  other.mesh = read_mesh(o.other_mesh, o.orient);
+  const Mesh other_points_on_sphere = read_mesh(o.other_sphere);
+  if(other_points_on_sphere.number_of_vertices() != other.mesh.number_of_vertices() ||
+     other_points_on_sphere.number_of_faces() != other.mesh.number_of_faces())
+    fail(o.other_sphere + " does not have the vertices and faces of " + o.other_mesh);
+  other.sphere = other.mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", CGAL::ORIGIN).first;
+  auto on_sphere = other_points_on_sphere.vertices().begin();
+  for(auto v : other.mesh.vertices()) other.sphere[v] = other_points_on_sphere.point(*on_sphere++);
+  if(!CGAL::is_triangle_mesh(other.mesh) || !SP::measure_distortion(other.mesh, other.sphere).is_valid())
+    fail(o.other_sphere + " is not a valid sphere map of " + o.other_mesh);
+  if(!o.landmarks.empty())
+    other.landmarks = read_landmarks(o, input_vertices, other.mesh.number_of_vertices());
+}
+
+void write_map_to_other(const Options& o, const Mesh& mesh, const Sphere_map& sphere, const Other_surface& other)
+{
+  const Sphere_map& other_sphere = other.sphere;
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   double misfit = 0;
   if(!o.landmarks.empty()) {
-    const auto landmarks = read_landmarks(o, mesh.number_of_vertices(), other.number_of_vertices());
-    rotation = SP::rotation_from_landmarks(sphere, other_sphere, landmarks);
-    misfit = landmark_misfit(sphere, other_sphere, landmarks, rotation);
+    rotation = SP::rotation_from_landmarks(sphere, other_sphere, other.landmarks);
+    misfit = landmark_misfit(sphere, other_sphere, other.landmarks, rotation);
   }
-  const Point_location on_other(other, other_sphere);
+  const Point_location on_other(other.mesh, other_sphere);
   Mesh mapped = mesh;  // same vertex indices: the images go straight into its points
   SP::map_to_surface(mesh, sphere, on_other, mapped.points(), rotation);
   write_mesh(mapped, o.map_output);
@@ -493,7 +549,6 @@ void write_map_to_other(const Options& o, const Mesh& mesh, const Sphere_map& sp
 
 void write_textured_obj(const Options& o, const Mesh& mesh, const Sphere_map& sphere)
 {
-  if(extension(o.texture_output) != ".obj") fail("cannot write " + o.texture_output + ": --texture writes .obj");
   const SP::Seamed_texture_coordinates texture = SP::seamed_texture_coordinates(mesh, sphere, o.texture_layout);
   const char* layout = o.texture_layout == SP::Texture_layout::OCTAHEDRAL ? "octahedral" : "equirectangular";
   write_stream(o.texture_output, std::ios::out, [&](std::ostream& out) {
@@ -511,10 +566,10 @@ bool uses_the_map(const Options& o)
   return !o.icosphere_output.empty() || !o.image_output.empty() || !o.map_output.empty() || !o.texture_output.empty();
 }
 
-void use_the_map(const Options& o, const Mesh& mesh, const Sphere_map& sphere)
+void use_the_map(const Options& o, const Mesh& mesh, const Sphere_map& sphere, const Other_surface& other)
 {
   if(!o.map_output.empty())
-    write_map_to_other(o, mesh, sphere);
+    write_map_to_other(o, mesh, sphere, other);
   if(!o.texture_output.empty())
     write_textured_obj(o, mesh, sphere);
   if(o.icosphere_output.empty() && o.image_output.empty())
@@ -534,9 +589,13 @@ int main(int argc, char** argv)
   // OpenMP regions inline, OpenBLAS one thread short of the cores.
   process_tuning::enable();
   const Options o = parse_options(argc, argv);
+  check_output_paths(o);
   Mesh mesh = read_mesh(o.input, o.orient);
   if(o.triangulate && !CGAL::is_triangle_mesh(mesh))
     PMP::triangulate_faces(mesh);
+  Other_surface other;
+  if(!o.map_output.empty())
+    read_other_surface(o, mesh.number_of_vertices(), other);
 
   auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", CGAL::ORIGIN).first;
   SP::Result r;
@@ -566,7 +625,7 @@ int main(int argc, char** argv)
     warn_if_squeezed(o, d);
   }
   if(d.is_valid())
-    use_the_map(o, mesh, sphere);
+    use_the_map(o, mesh, sphere, other);
   else if(uses_the_map(o))
     std::cerr << "spherical_parameterize: the map is not valid: remesh, geometry image, map and texture not written\n";
   return d.is_valid() ? 0 : 2;
