@@ -101,7 +101,9 @@ void usage(const char* program)
                "iso:latticeR is an isosurface by marching tetrahedra: blobs, a ball with five thin arms,\n"
                "a ball folded by narrow creases or by deeper ones that lean (not star-shaped), a standing\n"
                "figure with fingers, on a grid of N cubes a side, or the sphere of squared radius R\n"
-               "through points of the integer grid (clusters of near-duplicate vertices).\n";
+               "through points of the integer grid (clusters of near-duplicate vertices).\n"
+               "A MESH shape:spikesN is a ball with N spikes two radii long and 0.04 radian wide, like\n"
+               "a sea urchin (82k faces).\n";
 }
 
 std::vector<std::string> split(const std::string& s, char separator)
@@ -524,8 +526,9 @@ struct Mesh_input
 };
 
 /// A MESH starting with one of these is built in code (synthetic_shapes.h): `tube:capsule150`,
-/// `tube:helix4`, `tube:cylinder2000`, `iso:metaballs130`, `iso:starfish100`, `iso:lattice150`.
-const std::array<std::string, 2> synthetic_prefixes{"tube:", "iso:"};
+/// `tube:helix4`, `tube:cylinder2000`, `iso:metaballs130`, `iso:starfish100`, `iso:lattice150`,
+/// `shape:spikes150` (`shape:` takes any of its names).
+const std::array<std::string, 3> synthetic_prefixes{"tube:", "iso:", "shape:"};
 
 /// The length of `file`'s prefix of a shape built in code, 0 if it is a file.
 std::size_t synthetic_prefix(const std::string& file)
@@ -564,7 +567,7 @@ std::optional<Mesh_input> parse_mesh_argument(const std::string& argument)
   return in;
 }
 
-/// Builds a `tube:` or `iso:` mesh, reads any other; false if that gave no mesh.
+/// Builds a `tube:`, `iso:` or `shape:` mesh, reads any other; false if that gave no mesh.
 bool load_mesh(const std::string& file, Mesh& mesh)
 {
   if(synthetic_prefix(file) == 0)
