@@ -10,6 +10,7 @@
 #ifndef SPHERICAL_PARAMETERIZATION_BENCHMARK_SYNTHETIC_SHAPES_H
 #define SPHERICAL_PARAMETERIZATION_BENCHMARK_SYNTHETIC_SHAPES_H
 
+#include <CGAL/Spherical_parameterization/remesh_on_icosphere.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
@@ -370,43 +371,11 @@ CGAL::Surface_mesh<Point> lattice_sphere(double squared_radius)
   return marching_tetrahedra<Point>(field, 2 * half, Vec{-double(half), -double(half), -double(half)}, 1.0);
 }
 
-/// The unit icosahedron's faces split 1-to-4 `level` times, new points pushed onto the unit
-/// sphere: `20 * 4^level` nearly equal triangles, oriented outwards.
-inline void geodesic_sphere(int level, std::vector<Vec>& points, std::vector<std::array<std::size_t, 3>>& faces)
-{
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  points = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-            {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  for(Vec& p : points) p = normalized(p);
-  faces = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-           {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-           {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-  for(int l = 0; l < level; ++l) {
-    std::map<std::pair<std::size_t, std::size_t>, std::size_t> midpoint;
-    auto middle = [&](std::size_t a, std::size_t b) {
-      const std::pair<std::size_t, std::size_t> key = std::minmax(a, b);
-      const auto found = midpoint.find(key);
-      if(found != midpoint.end())
-        return found->second;
-      const Vec& p = points[a];
-      const Vec& q = points[b];
-      points.push_back(normalized(Vec{p[0] + q[0], p[1] + q[1], p[2] + q[2]}));
-      return midpoint[key] = points.size() - 1;
-    };
-    std::vector<std::array<std::size_t, 3>> finer;
-    for(const auto& f : faces) {
-      const std::size_t ab = middle(f[0], f[1]), bc = middle(f[1], f[2]), ca = middle(f[2], f[0]);
-      finer.insert(finer.end(), {{f[0], ab, ca}, {f[1], bc, ab}, {f[2], ca, bc}, {ab, bc, ca}});
-    }
-    faces = std::move(finer);
-  }
-}
-
-/// A ball covered with `count` long thin spikes, like a sea urchin: the geodesic sphere of
-/// level 6 (82k faces) moved out radially by a Gaussian bump two radii high and 0.04 radian
-/// wide around each of `count` directions spread evenly (a Fibonacci lattice). Each spike's
-/// apex is a sharp cone, which a conformal map opens; the spikes, most of the surface, share
-/// a resampling's samples.
+/// A ball covered with `count` long thin spikes, like a sea urchin: the geodesic icosphere
+/// of level 6 (82k faces, `make_icosphere()`) moved out radially by a Gaussian bump two radii
+/// high and 0.04 radian wide around each of `count` directions spread evenly (a Fibonacci
+/// lattice). Each spike's apex is a sharp cone, which a conformal map opens; the spikes, most
+/// of the surface, share a resampling's samples.
 template <class Point>
 CGAL::Surface_mesh<Point> spikes(int count)
 {
@@ -416,13 +385,12 @@ CGAL::Surface_mesh<Point> spikes(int count)
     const double z = 1 - (2 * i + 1.0) / count, r = std::sqrt(1 - z * z);
     directions.push_back({r * std::cos(golden_angle * i), r * std::sin(golden_angle * i), z});
   }
-  std::vector<Vec> points;
-  std::vector<std::array<std::size_t, 3>> faces;
-  geodesic_sphere(6, points, faces);
+  const CGAL::Spherical_parameterization::Icosphere sphere = CGAL::Spherical_parameterization::make_icosphere(6);
   CGAL::Surface_mesh<Point> mesh;
   using Vertex = typename CGAL::Surface_mesh<Point>::Vertex_index;
   std::vector<Vertex> vertex;
-  for(const Vec& p : points) {
+  for(const Eigen::Vector3d& point : sphere.points) {
+    const Vec p{point.x(), point.y(), point.z()};
     double radius = 1;
     for(const Vec& d : directions) {
       const double angle = std::acos(std::clamp(dot(p, d), -1.0, 1.0)) / width;
@@ -430,7 +398,7 @@ CGAL::Surface_mesh<Point> spikes(int count)
     }
     vertex.push_back(mesh.add_vertex(Point(radius * p[0], radius * p[1], radius * p[2])));
   }
-  for(const auto& f : faces)
+  for(const std::array<int, 3>& f : sphere.faces)
     mesh.add_face(vertex[f[0]], vertex[f[1]], vertex[f[2]]);
   return mesh;
 }
