@@ -212,6 +212,8 @@ Options parse_options(int argc, char** argv)
   return o;
 }
 
+std::string extension(const std::string& path) { return std::filesystem::path(path).extension().string(); }
+
 // True if every polygon has at least three distinct vertices, all of them among the points:
 // what CGAL's orientation of soups takes for granted.
 bool is_indexed_soup(std::size_t point_count, const std::vector<std::vector<std::size_t>>& polygons)
@@ -230,7 +232,7 @@ bool is_indexed_soup(std::size_t point_count, const std::vector<std::vector<std:
 Mesh read_mesh(const std::string& path, bool orient = false)
 {
   if(!std::filesystem::exists(path)) fail("cannot open " + path + ": no such file");
-  const std::string ext = std::filesystem::path(path).extension().string();
+  const std::string ext = extension(path);
   if(ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl")
     fail("cannot read " + path + ": unknown extension (use .off, .obj, .ply or .stl)");
   Mesh mesh;
@@ -317,8 +319,7 @@ void warn_if_squeezed(const Options& o, const SP::Distortion_report& d)
 // Writes to a temporary file beside the output, then renames it: never a half-written file.
 void write_atomically(const std::string& path, const std::function<bool(const std::string&)>& write)
 {
-  const std::string ext = std::filesystem::path(path).extension().string();
-  const std::string temporary = path + ".tmp" + std::to_string(getpid()) + ext;
+  const std::string temporary = path + ".tmp" + std::to_string(getpid()) + extension(path);
   if(!write(temporary)) {
     std::remove(temporary.c_str());
     fail("cannot write " + path);
@@ -331,10 +332,9 @@ void write_atomically(const std::string& path, const std::function<bool(const st
   }
 }
 
+// `path` ends in .off or .obj (`check_output_paths()`).
 void write_mesh(const Mesh& mesh, const std::string& path)
 {
-  const std::string ext = std::filesystem::path(path).extension().string();
-  if(ext != ".off" && ext != ".obj") fail("cannot write " + path + ": use .off or .obj");
   write_atomically(path, [&mesh](const std::string& file) {
     return CGAL::IO::write_polygon_mesh(file, mesh, CGAL::parameters::stream_precision(17));
   });
@@ -352,7 +352,7 @@ void write_stream(const std::string& path, std::ios::openmode mode, const std::f
 void check_output_path(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions)
 {
   const std::filesystem::path file(path);
-  if(std::find(extensions.begin(), extensions.end(), file.extension().string()) == extensions.end()) {
+  if(std::find(extensions.begin(), extensions.end(), extension(path)) == extensions.end()) {
     std::string allowed;
     for(const std::string& e : extensions) allowed += (allowed.empty() ? "" : ", ") + e;
     fail("cannot write " + path + flag + ": use " + allowed);
@@ -429,8 +429,6 @@ SP::Result run(const Options& o, const Mesh& mesh, Mesh::Property_map<Mesh::Vert
 
 using Sphere_map = Mesh::Property_map<Mesh::Vertex_index, Point>;
 using Point_location = SP::Sphere_point_location<Mesh>;
-
-std::string extension(const std::string& path) { return std::filesystem::path(path).extension().string(); }
 
 // Writes the remesh and, unless quiet, how far the input's vertices and face centroids are
 // from it: what the resampling lost.
