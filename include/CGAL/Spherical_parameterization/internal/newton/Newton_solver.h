@@ -110,18 +110,14 @@ public:
     solver_.analyze_pattern(system_.matrix());
   }
 
+  /// Minimizes `energy` from `x`, which it updates to the last accepted iterate, with the
+  /// stops and stages' settings of `options`; `visitor` sees every iteration and may cancel.
   template <class Energy, class Visitor>
   Newton_outcome minimize(const Spherical_energy<Energy>& energy, Points& x, const Newton_options& options,
                           Visitor& visitor)
   {
+    take_settings(options);
     Newton_outcome out;
-    with_barrier_ = options.keep_fold_free;
-    floor_ = options.fold_floor;
-    outer_weight_ = options.outer_barrier_weight;
-    floored_activation_ = options.floored_activation;
-    first_shift_ = options.first_shift;
-    boost_search_ = options.boost_search;
-    drop_rotation_curvature_ = options.drop_rotation_curvature;
     double e = total_energy(energy, x);
     out.energy = e;
     if(!std::isfinite(e)) {
@@ -130,59 +126,24 @@ public:
     }
     if(options.fold_free_iterate && count_bad_faces(*faces_, x) == 0)
       *options.fold_free_iterate = x;
-    Folded_iterates folded;
+    Run run(e);
     Points trial(x.size());
-    std::vector<double> history{e};  // energy after each iteration, for the stall test
-    double last_full_decrement = 0;  // of the last iteration if its step was a full Newton step, else 0
-    std::size_t capped_steps = 0;    // consecutive iterations whose step the fold-free cap shortened
-    Boost_skipping boosts;
     for(;;) {
       if(out.iterations >= options.max_iterations) { out.stop = Newton_stop::ITERATION_CAP; break; }
       if(Clock::now() > options.deadline) { out.stop = Newton_stop::TIME_LIMIT; break; }
 
-      if(boosts.skip(options.tolerance * std::abs(e + options.held_energy)))
-        ++boosts.skipped;
+      if(run.boosts.skip(threshold(options, e)))
+        ++run.boosts.skipped;
       else
-        boosts.record(boost_gain(energy, x, e));
+        run.boosts.record(boost_gain(energy, x, e));
       system_.update_bases(x);
-      Vector d;
-      const bool smoothing = out.iterations < options.smoothing_iterations;
-      bool two_grid = false;
-      if(smoothing)
-        two_grid = smoothing_direction(energy, x, out.iterations == 0 ? options.coarse_correction : nullptr, d);
-      else if(!newton_direction(energy, x, d)) { out.stop = Newton_stop::STALLED; break; }
+      Step step;
+      if(!find_direction(energy, x, options, out.iterations, step)) { out.stop = Newton_stop::STALLED; break; }
+      if(!(step.decrement > threshold(options, e))) { out.stop = Newton_stop::CONVERGED; break; }
 
-      double decrement = -system_.gradient().dot(d);
-      double threshold = options.tolerance * std::abs(e + options.held_energy);
-      if(!(decrement > threshold)) { out.stop = Newton_stop::CONVERGED; break; }
-
-      double alpha = 1;
-      auto fold_free_cap = [&] {
-        if(options.keep_fold_free)
-          alpha = std::min(1.0, step_cap_share * largest_fold_free_step(*faces_, x, system_.ambient(d)));
-      };
-      fold_free_cap();
-      bool capped = alpha < 1;
-      double e_new = line_search(energy, x, d, e, decrement, alpha, trial);
-      if(two_grid && alpha < 1) {
-        // The line search had to shorten the two-grid step: the last level's Hessian does
-        // not model the input's energy here (a level that ended on its fold barrier, as
-        // squeezed protrusions do). Block Jacobi alone.
-        system_.block_jacobi(-system_.gradient(), d);
-        decrement = -system_.gradient().dot(d);
-        alpha = 1;
-        fold_free_cap();
-        capped = alpha < 1;
-        e_new = line_search(energy, x, d, e, decrement, alpha, trial);
-      }
-      if(options.extend_projected_steps && alpha == 1 && !smoothing && projected_ && !options.keep_fold_free)
-        e_new = extend_step(energy, x, d, e_new, alpha, trial);
+      const double e_new = take_step(energy, x, options, e, step, trial);
       if(!(e_new < e)) {
-        // No decrease along a direction of descent: precision is exhausted, or the
-        // shift is too small for this non-convex stretch. Grow it once before giving up.
-        if(mu_projected_ < max_retry_shift * mu_floor_) {
-          mu_exact_ *= retry_shift_growth;
-          mu_projected_ *= retry_shift_growth;
+        if(grow_shifts_for_retry()) {
           ++out.iterations;
           continue;
         }
@@ -190,55 +151,34 @@ public:
         break;
       }
       x.swap(trial);
-      capped_steps = capped ? capped_steps + 1 : 0;
-      if(options.fold_free_iterate) {
-        folded.record(count_bad_faces(*faces_, x), options.count_unfolding_iterates);
-        if(folded.in_a_row == 0)
-          *options.fold_free_iterate = x;
-        else if(folded.in_a_row > options.max_folded_iterations) {
-          ++out.iterations;
-          out.stop = Newton_stop::FOLDED;
-          break;
-        }
+      run.capped_steps = step.capped ? run.capped_steps + 1 : 0;
+      if(options.fold_free_iterate && too_many_folded(x, options, run.folded)) {
+        ++out.iterations;
+        out.stop = Newton_stop::FOLDED;
+        break;
       }
       const double decrease = e - e_new;
-      boosts.last_decrease = decrease;
+      run.boosts.last_decrease = decrease;
       e = e_new;
-      threshold = options.tolerance * std::abs(e + options.held_energy);
       ++out.iterations;
       out.energy = e;
-      relax_shifts(alpha >= 1, smoothing);
+      relax_shifts(step.alpha >= 1, step.smoothing);
 
-      if(!visitor(progress(options, out.iterations, e, decrement, alpha))) { out.stop = Newton_stop::CANCELLED; break; }
-      history.push_back(e);
-      // A full Newton step that decreased the energy as its model predicted, with a decrement
-      // close to the tolerance, or one whose successor, predicted from the last two decrements,
-      // is far below it: the next decrement is quadratically smaller, no need to factor again
-      // to see it.
-      const bool model_held = !smoothing && alpha == 1 && std::abs(decrease - decrement / 2) <= model_agreement * decrement;
-      const double predicted = predicted_decrement(last_full_decrement, decrement);
-      last_full_decrement = model_held ? decrement : 0;
-      const bool quadratic_tail =
-        model_held && (decrement <= quadratic_tail_margin * threshold ||
-                       (options.predict_convergence && predicted <= predicted_margin * threshold));
-      // With `predict_convergence`, also a step of at least Newton's length that gained under
-      // the threshold, its decrement under `quadratic_tail_margin` thresholds: the projected
-      // model's extended steps, whose decrements shrink at a linear rate, stop here rather
-      // than factor once more only to find the next decrement under the threshold.
-      const bool linear_tail = options.predict_convergence && !smoothing && alpha >= 1 && decrease <= threshold &&
-                               decrement <= quadratic_tail_margin * threshold;
-      const bool tail = quadratic_tail || linear_tail;
-      if(tail && options.predict_convergence && boost_gain(energy, x, e) > threshold) {
+      if(!visitor(progress(options, out.iterations, e, step.decrement, step.alpha))) { out.stop = Newton_stop::CANCELLED; break; }
+      run.history.push_back(e);
+      const double limit = threshold(options, e);
+      const Tail tail = tail_after(options, step, decrease, limit, run.last_full_decrement);
+      // The decrement leaves the boosts out: a boost step that still gains goes on.
+      if(tail.reached && options.predict_convergence && boost_gain(energy, x, e) > limit) {
         out.energy = e;
         continue;
       }
-      if(tail || decrease <= negligible_decrease * threshold || stalled(history, threshold) ||
-         (options.stop_slow_capped_tail && slow_capped_tail(history, capped_steps, threshold))) {
+      if(tail.reached || converged_slowly(options, run, decrease, limit)) {
         out.stop = Newton_stop::CONVERGED;
         break;
       }
-      if(options.leave_under_floor && options.fold_free_iterate && folded.in_a_row == 0 && model_held &&
-         predicted <= threshold && !is_above_floor(x, options.fold_floor)) {
+      if(options.leave_under_floor && options.fold_free_iterate && run.folded.in_a_row == 0 && tail.model_held &&
+         tail.predicted <= limit && !is_above_floor(x, options.fold_floor)) {
         out.stop = Newton_stop::UNDER_FLOOR;
         break;
       }
@@ -398,6 +338,151 @@ private:
     }
     void record(double gain) { last_gain = gain; skipped = 0; }
   };
+
+  // What one minimization carries from an iteration to the next.
+  struct Run
+  {
+    explicit Run(double e) : history{e} {}
+    Folded_iterates folded;
+    std::vector<double> history;     // energy after each iteration, for the stall tests
+    double last_full_decrement = 0;  // of the last iteration if its step was a full Newton step that held its model, else 0
+    std::size_t capped_steps = 0;    // consecutive iterations whose step the fold-free cap shortened
+    Boost_skipping boosts;
+  };
+
+  // An iteration's direction and how far along it the iteration went.
+  struct Step
+  {
+    Vector d;
+    double decrement = 0;    // -g.d, Newton's decrement for a Newton direction
+    double alpha = 1;        // the accepted length, in units of d
+    bool smoothing = false;  // a block Jacobi or two-grid direction (`Newton_options::smoothing_iterations`)
+    bool two_grid = false;
+    bool capped = false;     // the fold-free cap shortened it before the line search
+  };
+
+  // How an accepted step ends the quadratic or linear tail of the convergence.
+  struct Tail
+  {
+    bool model_held = false;  // a full Newton step that decreased the energy as its model predicted
+    double predicted = 0;     // the next decrement, extrapolated from the last two full steps
+    bool reached = false;     // no need to factor again to see the next decrement under the threshold
+  };
+
+  void take_settings(const Newton_options& options)
+  {
+    with_barrier_ = options.keep_fold_free;
+    floor_ = options.fold_floor;
+    outer_weight_ = options.outer_barrier_weight;
+    floored_activation_ = options.floored_activation;
+    first_shift_ = options.first_shift;
+    boost_search_ = options.boost_search;
+    drop_rotation_curvature_ = options.drop_rotation_curvature;
+  }
+
+  // The decrement under which the minimization has converged at energy `e`.
+  static double threshold(const Newton_options& options, double e)
+  {
+    return options.tolerance * std::abs(e + options.held_energy);
+  }
+
+  // The first `smoothing_iterations` take a smoothing step (the very first a two-grid cycle
+  // with a coarse correction), the others Newton's; false if no Newton direction was found.
+  template <class Energy>
+  bool find_direction(const Spherical_energy<Energy>& energy, const Points& x, const Newton_options& options,
+                      std::size_t iteration, Step& step)
+  {
+    step.smoothing = iteration < options.smoothing_iterations;
+    if(step.smoothing)
+      step.two_grid = smoothing_direction(energy, x, iteration == 0 ? options.coarse_correction : nullptr, step.d);
+    else if(!newton_direction(energy, x, step.d))
+      return false;
+    step.decrement = -system_.gradient().dot(step.d);
+    return true;
+  }
+
+  // The step along `step.d`: capped short of any fold in the fold-free stages, then the
+  // Armijo line search, then extended while the energy falls (`extend_step()`). Returns the
+  // energy at the accepted point `trial`, +inf if none.
+  template <class Energy>
+  double take_step(const Spherical_energy<Energy>& energy, const Points& x, const Newton_options& options, double e,
+                   Step& step, Points& trial)
+  {
+    auto cap_short_of_folds = [&] {
+      step.alpha = 1;
+      if(options.keep_fold_free)
+        step.alpha = std::min(1.0, step_cap_share * largest_fold_free_step(*faces_, x, system_.ambient(step.d)));
+      step.capped = step.alpha < 1;
+    };
+    cap_short_of_folds();
+    double e_new = line_search(energy, x, step.d, e, step.decrement, step.alpha, trial);
+    if(step.two_grid && step.alpha < 1) {
+      // The line search had to shorten the two-grid step: the last level's Hessian does
+      // not model the input's energy here (a level that ended on its fold barrier, as
+      // squeezed protrusions do). Block Jacobi alone.
+      system_.block_jacobi(-system_.gradient(), step.d);
+      step.decrement = -system_.gradient().dot(step.d);
+      cap_short_of_folds();
+      e_new = line_search(energy, x, step.d, e, step.decrement, step.alpha, trial);
+    }
+    if(options.extend_projected_steps && step.alpha == 1 && !step.smoothing && projected_ && !options.keep_fold_free)
+      e_new = extend_step(energy, x, step.d, e_new, step.alpha, trial);
+    return e_new;
+  }
+
+  // No decrease along a direction of descent: precision is exhausted, or the shift is too
+  // small for this non-convex stretch. The shifts grow for one more try; false if they are
+  // already far above their floor.
+  bool grow_shifts_for_retry()
+  {
+    if(!(mu_projected_ < max_retry_shift * mu_floor_))
+      return false;
+    mu_exact_ *= retry_shift_growth;
+    mu_projected_ *= retry_shift_growth;
+    return true;
+  }
+
+  // Keeps the accepted iterate `x` as the last fold-free one, or counts it as folded; true if
+  // more than `max_folded_iterations` folded iterates came in a row.
+  bool too_many_folded(const Points& x, const Newton_options& options, Folded_iterates& folded) const
+  {
+    folded.record(count_bad_faces(*faces_, x), options.count_unfolding_iterates);
+    if(folded.in_a_row == 0)
+      *options.fold_free_iterate = x;
+    return folded.in_a_row > options.max_folded_iterations;
+  }
+
+  // A full Newton step that decreased the energy as its model predicted, with a decrement
+  // close to the tolerance, or one whose successor, predicted from the last two decrements,
+  // is far below it: the next decrement is quadratically smaller, no need to factor again to
+  // see it. With `predict_convergence`, also a step of at least Newton's length that gained
+  // under the threshold, its decrement under `quadratic_tail_margin` thresholds: the
+  // projected model's extended steps, whose decrements shrink at a linear rate, stop here
+  // rather than factor once more only to find the next decrement under the threshold.
+  // Updates `last_full_decrement`.
+  static Tail tail_after(const Newton_options& options, const Step& step, double decrease, double threshold,
+                         double& last_full_decrement)
+  {
+    Tail tail;
+    tail.model_held = !step.smoothing && step.alpha == 1 &&
+                      std::abs(decrease - step.decrement / 2) <= model_agreement * step.decrement;
+    tail.predicted = predicted_decrement(last_full_decrement, step.decrement);
+    last_full_decrement = tail.model_held ? step.decrement : 0;
+    const bool quadratic = tail.model_held && (step.decrement <= quadratic_tail_margin * threshold ||
+                                               (options.predict_convergence && tail.predicted <= predicted_margin * threshold));
+    const bool linear = options.predict_convergence && !step.smoothing && step.alpha >= 1 && decrease <= threshold &&
+                        step.decrement <= quadratic_tail_margin * threshold;
+    tail.reached = quadratic || linear;
+    return tail;
+  }
+
+  // The stops on a decrease that is too small to go on for: negligible, ten iterations
+  // gaining under the threshold, or the slow capped tail of a floor stage.
+  static bool converged_slowly(const Newton_options& options, const Run& run, double decrease, double threshold)
+  {
+    return decrease <= negligible_decrease * threshold || stalled(run.history, threshold) ||
+           (options.stop_slow_capped_tail && slow_capped_tail(run.history, run.capped_steps, threshold));
+  }
 
   // One Moebius boost step if the minimization makes them: what it gains (the map and its
   // energy `e` updated), 0 without boost steps. Before every iteration, and before a stop on
