@@ -749,6 +749,69 @@ bool write_json(const std::string& file, const std::vector<Row>& rows, bool fork
   return bool(out);
 }
 
+// ---------------------------------------------------------------------------------------
+// Runs
+
+// The mesh that `in` names, with its Loop subdivisions and defects; false, with a message,
+// if there is none.
+bool prepare_mesh(const Mesh_input& in, Mesh& mesh)
+{
+  if(!load_mesh(in.file, mesh)) {
+    std::cerr << (synthetic_prefix(in.file) > 0 ? "no such shape: " : "cannot read ") << in.file << '\n';
+    return false;
+  }
+  if(in.loops > 0)
+    CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(in.loops));
+  std::mt19937 random(1);  // the same faces in every run
+  mesh_defects::add_slivers(mesh, in.slivers, 1e-6, random);
+  mesh_defects::add_needles(mesh, in.needles, 1e-6, 1e-7, random);
+  mesh.collect_garbage();  // contiguous vertex indices for the Laplacian
+  return true;
+}
+
+// `row.repeats` runs of `energy` on `mesh`, each after the first on a turned copy if the
+// options say so (`input`: the points as read, put back after each); their times and peak
+// memory go into `row`. Stops at the first run that did not run, which is then the last.
+std::vector<Run_record> run_repeats(Mesh& mesh, const std::vector<Point>& input, const SP::Energy_mix& energy,
+                                    SP::Pipeline pipeline, const Options& options, Row& row)
+{
+  std::vector<Run_record> runs;
+  for(int r = 0; r < row.repeats; ++r) {
+    const bool turned = r > 0 && options.turn_repeats;
+    if(turned)
+      turn(mesh, r);
+    Run_record run = options.fork_runs ? run_forked(mesh, energy, pipeline, options.max_seconds)
+                                       : run_once(mesh, energy, pipeline, options.max_seconds);
+    if(turned)
+      for(vertex_descriptor v : mesh.vertices())
+        mesh.point(v) = input[std::size_t(v)];
+    if(!run.ran) {
+      runs.assign(1, run);
+      break;
+    }
+    const long delta = options.fork_runs ? run.peak_rss_kb - run.rss_before_kb : run.rss_after_kb - run.rss_before_kb;
+    row.peak_rss_kb = std::max(row.peak_rss_kb, run.peak_rss_kb);
+    row.peak_delta_kb = std::max(row.peak_delta_kb, delta);
+    row.times.push_back(run.seconds);
+    runs.push_back(run);
+  }
+  return runs;
+}
+
+// The run a row reports: the one of median time (the lower middle one for an even count),
+// or the first that gave an invalid map: the turned inputs take different paths.
+Run_record reported_run(const std::vector<Run_record>& runs)
+{
+  for(const Run_record& run : runs)
+    if(run.ran && !run.valid)
+      return run;
+  std::vector<std::size_t> order(runs.size());
+  for(std::size_t k = 0; k < order.size(); ++k)
+    order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].seconds < runs[b].seconds; });
+  return runs[order[(order.size() - 1) / 2]];
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -783,17 +846,10 @@ int main(int argc, char** argv)
     }
     const Mesh_input& in = *parsed;
     Mesh mesh;
-    if(!load_mesh(in.file, mesh)) {
-      std::cerr << (synthetic_prefix(in.file) > 0 ? "no such shape: " : "cannot read ") << in.file << '\n';
+    if(!prepare_mesh(in, mesh)) {
       failures = true;
       continue;
     }
-    if(in.loops > 0)
-      CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(in.loops));
-    std::mt19937 random(1);  // the same faces in every run
-    mesh_defects::add_slivers(mesh, in.slivers, 1e-6, random);
-    mesh_defects::add_needles(mesh, in.needles, 1e-6, 1e-7, random);
-    mesh.collect_garbage();  // contiguous vertex indices for the Laplacian
 
     std::string failure;
     const std::optional<Yardstick> measured =
@@ -822,40 +878,12 @@ int main(int argc, char** argv)
       row.repeats = repeats;
       row.yardstick = yardstick;
       row.yardstick_kind = kind;
-      std::vector<Run_record> runs;
-      for(int r = 0; r < repeats; ++r) {
-        const bool turned = r > 0 && options.turn_repeats;
-        if(turned)
-          turn(mesh, r);
-        Run_record run = options.fork_runs ? run_forked(mesh, energy, pipeline, options.max_seconds)
-                                           : run_once(mesh, energy, pipeline, options.max_seconds);
-        if(turned)
-          for(vertex_descriptor v : mesh.vertices())
-            mesh.point(v) = input[std::size_t(v)];
-        if(!run.ran) {
-          std::cerr << row.mesh << " / " << energy_name << ": " << run.detail << '\n';
-          failures = true;
-          runs.assign(1, run);
-          break;
-        }
-        const long delta = options.fork_runs ? run.peak_rss_kb - run.rss_before_kb : run.rss_after_kb - run.rss_before_kb;
-        row.peak_rss_kb = std::max(row.peak_rss_kb, run.peak_rss_kb);
-        row.peak_delta_kb = std::max(row.peak_delta_kb, delta);
-        row.times.push_back(run.seconds);
-        runs.push_back(run);
+      const std::vector<Run_record> runs = run_repeats(mesh, input, energy, pipeline, options, row);
+      if(!runs.back().ran) {
+        std::cerr << row.mesh << " / " << energy_name << ": " << runs.back().detail << '\n';
+        failures = true;
       }
-      // The run of median time (the lower middle one for an even count), or the first that
-      // gave an invalid map: the turned inputs take different paths.
-      std::vector<std::size_t> order(runs.size());
-      for(std::size_t k = 0; k < order.size(); ++k)
-        order[k] = k;
-      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].seconds < runs[b].seconds; });
-      row.run = runs[order[(order.size() - 1) / 2]];
-      for(const Run_record& run : runs)
-        if(run.ran && !run.valid) {
-          row.run = run;
-          break;
-        }
+      row.run = reported_run(runs);
       row.time = median(row.times);
       row.status = status_name(row.run.status, row.run.ran);
       if(row.run.ran && row.run.valid != row.run.solver_valid)
