@@ -369,6 +369,7 @@ private:
     bool reached = false;     // no need to factor again to see the next decrement under the threshold
   };
 
+  // The settings of `options` that the helpers of a minimization read from the solver.
   void take_settings(const Newton_options& options)
   {
     with_barrier_ = options.keep_fold_free;
