@@ -362,12 +362,20 @@ void check_output_path(const std::string& flag, const std::string& path, const s
     fail("cannot write " + path + flag + ": no folder " + file.parent_path().string());
 }
 
-// True if the two paths name the same file, existing or not.
-bool same_file(const std::string& a, const std::string& b)
+// The path made absolute and canonical as far as it exists (`o.off` and `./o.off` alike);
+// normalized as written where that fails (a folder it may not read).
+std::filesystem::path comparable_path(const std::string& path)
 {
   std::error_code error;
-  return std::filesystem::weakly_canonical(a, error) == std::filesystem::weakly_canonical(b, error);
+  const std::filesystem::path absolute = std::filesystem::absolute(path, error);
+  if(error)
+    return std::filesystem::path(path).lexically_normal();
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(absolute, error);
+  return error ? absolute.lexically_normal() : canonical;
 }
+
+// True if the two paths name the same file, existing or not.
+bool same_file(const std::string& a, const std::string& b) { return comparable_path(a) == comparable_path(b); }
 
 // Every output is checked before the solve, so that a wrong path costs no solve and leaves no
 // partial set of outputs behind; none may be a file the tool reads, or another output.
