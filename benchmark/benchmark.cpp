@@ -771,7 +771,8 @@ bool prepare_mesh(const Mesh_input& in, Mesh& mesh)
 
 // `row.repeats` runs of `energy` on `mesh`, each after the first on a turned copy if the
 // options say so (`input`: the points as read, put back after each); their times and peak
-// memory go into `row`. Stops at the first run that did not run, which is then the last.
+// memory go into `row`. A run that did not run ends the repeats and is then the only one
+// returned.
 std::vector<Run_record> run_repeats(Mesh& mesh, const std::vector<Point>& input, const SP::Energy_mix& energy,
                                     SP::Pipeline pipeline, const Options& options, Row& row)
 {
