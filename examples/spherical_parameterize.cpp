@@ -3,12 +3,13 @@
 //   spherical_parameterize [INPUT [OUTPUT]] [--energy NAME] [--area-preservation T] [--weights A [B]]
 //                          [--pipeline robust|paper] [--init central|FILE]
 //                          [--max-iterations N] [--time-limit SECONDS] [--no-correction]
-//                          [--triangulate] [--orient] [--quiet]
+//                          [--triangulate] [--merge-duplicates] [--orient] [--quiet]
 //                          [--remesh-icosphere LEVEL OUT] [--geometry-image N OUT]
 //                          [--map-to OTHER_MESH OTHER_SPHERE OUT [--landmarks FILE]]
 //                          [--texture equirectangular|octahedral OUT.obj]
 //
-// OUTPUT (.off or .obj) has the input's vertices in the same order and the same faces.
+// OUTPUT (.off or .obj) has the input's vertices in the same order and the same faces, unless
+// --merge-duplicates or --orient repaired them.
 // The options after --quiet use the map once it is computed, and write nothing if it is not
 // valid (see the usage string below for each).
 // Exit status: 0 for a valid map, 2 for a map that is not valid, 1 for bad input or usage
@@ -18,6 +19,7 @@
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/spherical_parameterize.h>
@@ -40,6 +42,7 @@
 #include <iomanip>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -58,6 +61,14 @@ using Mesh = CGAL::Surface_mesh<Point>;
 
 namespace {
 
+// What the reading of a mesh repairs, each only when asked: OUTPUT then has the repaired
+// vertices or faces, not the input's.
+struct Soup_repairs
+{
+  bool merge_duplicates = false;  // one vertex per distinct point
+  bool orient = false;            // faces oriented consistently
+};
+
 struct Options
 {
   std::string input = std::string(SPHERICAL_PARAMETERIZATION_DATA_DIR) + "/triceratops.off";
@@ -71,7 +82,7 @@ struct Options
   double time_limit = 0;
   bool correction = true;
   bool triangulate = false;
-  bool orient = false;
+  Soup_repairs repairs;
   bool quiet = false;
 
   // Uses of the map, each off unless its output path is set.
@@ -90,7 +101,8 @@ const char* usage =
   "                   inverse_dirichlet|symmetric_dirichlet]\n"
   "         [--area-preservation T] [--weights A [B]] [--pipeline robust|paper] [--init central|FILE]\n"
   "         [--max-iterations N]\n"
-  "         [--time-limit SECONDS] [--no-correction] [--triangulate] [--orient] [--quiet]\n"
+  "         [--time-limit SECONDS] [--no-correction] [--triangulate] [--merge-duplicates] [--orient]\n"
+  "         [--quiet]\n"
   "         [--remesh-icosphere LEVEL OUT] [--geometry-image N OUT]\n"
   "         [--map-to OTHER_MESH OTHER_SPHERE OUT [--landmarks FILE]]\n"
   "         [--texture equirectangular|octahedral OUT.obj]\n"
@@ -101,6 +113,9 @@ const char* usage =
   "                                 angles, B on the areas; symmetric_dirichlet: A on the map's\n"
   "                                 Dirichlet energy, B on its inverse's)\n"
   "  --triangulate                  split the input's polygons into triangles\n"
+  "  --merge-duplicates             weld the vertices that share a point (a mesh split at its seams,\n"
+  "                                 or one with a copy of each vertex per face); OUTPUT then has one\n"
+  "                                 vertex per distinct point, in the order of their first copies\n"
   "  --orient                       read a soup whose faces are not consistently oriented (CGAL's\n"
   "                                 orient_polygon_soup); OUTPUT then has the reoriented faces, and\n"
   "                                 the vertices it had to duplicate at non-manifold points last\n"
@@ -174,7 +189,8 @@ Options parse_options(int argc, char** argv)
     else if(arg == "--time-limit") o.time_limit = parse_number(arg, next());
     else if(arg == "--no-correction") o.correction = false;
     else if(arg == "--triangulate") o.triangulate = true;
-    else if(arg == "--orient") o.orient = true;
+    else if(arg == "--merge-duplicates") o.repairs.merge_duplicates = true;
+    else if(arg == "--orient") o.repairs.orient = true;
     else if(arg == "--quiet") o.quiet = true;
     else if(arg == "--remesh-icosphere") {
       o.icosphere_level = parse_integer(arg, next(), 0, 9);
@@ -228,8 +244,8 @@ bool is_indexed_soup(std::size_t point_count, const std::vector<std::vector<std:
 }
 
 // Reads a polygon mesh; a file that reads as a polygon soup but not as a mesh is named as such,
-// or, with `orient`, made into one by CGAL's orientation of soups.
-Mesh read_mesh(const std::string& path, bool orient = false)
+// unless the `repairs` asked for make it one.
+Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {})
 {
   if(!std::filesystem::exists(path)) fail("cannot open " + path + ": no such file");
   const std::string ext = extension(path);
@@ -240,7 +256,7 @@ Mesh read_mesh(const std::string& path, bool orient = false)
   std::vector<std::vector<std::size_t>> polygons;
   bool is_soup = false;
   try {
-    if(CGAL::IO::read_polygon_mesh(path, mesh, CGAL::parameters::verbose(false)))
+    if(!repairs.merge_duplicates && CGAL::IO::read_polygon_mesh(path, mesh, CGAL::parameters::verbose(false)))
       return mesh;
     is_soup = CGAL::IO::read_polygon_soup(path, points, polygons) && !polygons.empty();
   } catch(const std::exception& e) {
@@ -250,21 +266,35 @@ Mesh read_mesh(const std::string& path, bool orient = false)
   if(!is_soup)
     fail("cannot read " + path + ": not a valid mesh file");
   const std::string not_a_surface = "cannot read " + path + " as a surface: its " + std::to_string(polygons.size()) + " faces ";
+  if(repairs.merge_duplicates) {
+    const std::size_t welded = PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
+    std::cerr << "spherical_parameterize: --merge-duplicates welded " << welded << " vertices of " << path << "\n";
+  }
+  // After the welding too: a face may have lost a corner to it.
   if(!is_indexed_soup(points.size(), polygons))
     fail(not_a_surface + "include one with fewer than three distinct vertices or a vertex index out of range");
   const std::string why = "do not form an oriented 2-manifold (non-manifold vertices or edges, or inconsistent orientation)";
-  if(!orient)
-    fail(not_a_surface + why + "; the option --orient can repair it");
   const std::size_t read_points = points.size();
-  PMP::orient_polygon_soup(points, polygons);  // appends the points it duplicates
+  if(repairs.orient)
+    PMP::orient_polygon_soup(points, polygons);  // appends the points it duplicates
   if(!PMP::is_polygon_soup_a_polygon_mesh(polygons))
-    fail(not_a_surface + why + ", even after --orient");
+    fail(not_a_surface + why + (repairs.orient ? ", even after --orient" : "; the option --orient can repair it"));
   mesh.clear();  // the failed read may have left part of the file in it
   PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
   if(points.size() > read_points)
     std::cerr << "spherical_parameterize: --orient duplicated " << points.size() - read_points
               << " vertices of " << path << " at non-manifold points\n";
   return mesh;
+}
+
+// The number of vertices whose point another vertex has already.
+std::size_t shared_points(const Mesh& mesh)
+{
+  std::set<Point> seen;
+  std::size_t shared = 0;
+  for(auto v : mesh.vertices())
+    shared += !seen.insert(mesh.point(v)).second;
+  return shared;
 }
 
 std::string quote_status(const SP::Result& r)
@@ -519,7 +549,7 @@ struct Other_surface
 
 void read_other_surface(const Options& o, std::size_t input_vertices, Other_surface& other)
 {
-  other.mesh = read_mesh(o.other_mesh, o.orient);
+  other.mesh = read_mesh(o.other_mesh, o.repairs);
   const Mesh other_points_on_sphere = read_mesh(o.other_sphere);
   if(other_points_on_sphere.number_of_vertices() != other.mesh.number_of_vertices() ||
      other_points_on_sphere.number_of_faces() != other.mesh.number_of_faces())
@@ -596,7 +626,7 @@ int main(int argc, char** argv)
   process_tuning::enable();
   const Options o = parse_options(argc, argv);
   check_output_paths(o);
-  Mesh mesh = read_mesh(o.input, o.orient);
+  Mesh mesh = read_mesh(o.input, o.repairs);
   if(o.triangulate && !CGAL::is_triangle_mesh(mesh))
     PMP::triangulate_faces(mesh);
   Other_surface other;
@@ -619,8 +649,16 @@ int main(int argc, char** argv)
   }
 
   // Codes before NO_VALID_MAP mean that nothing was solved (bad input or parameters).
-  if(r.status != SP::Error_code::OK && r.status < SP::Error_code::NO_VALID_MAP)
-    fail(o.input + ": " + quote_status(r));
+  if(r.status != SP::Error_code::OK && r.status < SP::Error_code::NO_VALID_MAP) {
+    // An open or split mesh whose pieces meet at copies of the same points, as exporters
+    // that split vertices at seams leave them.
+    const bool split = r.status == SP::Error_code::NOT_CLOSED || r.status == SP::Error_code::NOT_CONNECTED ||
+                       r.status == SP::Error_code::NOT_GENUS_ZERO;
+    const std::size_t shared = split && !o.repairs.merge_duplicates ? shared_points(mesh) : 0;
+    fail(o.input + ": " + quote_status(r) +
+         (shared ? "; " + std::to_string(shared) + " vertices share their point with another: the option "
+                   "--merge-duplicates welds them" : ""));
+  }
 
   const SP::Distortion_report d = SP::measure_distortion(mesh, sphere);
   Mesh sphere_mesh = mesh;
