@@ -266,7 +266,12 @@ Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {})
   if(!is_soup)
     fail("cannot read " + path + ": not a valid mesh file");
   const std::string not_a_surface = "cannot read " + path + " as a surface: its " + std::to_string(polygons.size()) + " faces ";
-  if(repairs.merge_duplicates) {
+  // Points compare lexicographically, and a NaN compares equal to any point: such a file is
+  // left for the package's check of the input to refuse.
+  const bool finite = std::all_of(points.begin(), points.end(), [](const Point& p) {
+    return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
+  });
+  if(repairs.merge_duplicates && finite) {
     const std::size_t welded = PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
     std::cerr << "spherical_parameterize: --merge-duplicates welded " << welded << " vertices of " << path << "\n";
   }
