@@ -3,13 +3,14 @@
 //   spherical_parameterize [INPUT [OUTPUT]] [--energy NAME] [--area-preservation T] [--weights A [B]]
 //                          [--pipeline robust|paper] [--init central|FILE]
 //                          [--max-iterations N] [--time-limit SECONDS] [--no-correction]
-//                          [--triangulate] [--merge-duplicates] [--orient] [--quiet]
+//                          [--triangulate] [--merge-duplicates] [--remove-isolated] [--orient]
+//                          [--quiet]
 //                          [--remesh-icosphere LEVEL OUT] [--geometry-image N OUT]
 //                          [--map-to OTHER_MESH OTHER_SPHERE OUT [--landmarks FILE]]
 //                          [--texture equirectangular|octahedral OUT.obj]
 //
 // OUTPUT (.off or .obj) has the input's vertices in the same order and the same faces, unless
-// --merge-duplicates or --orient repaired them.
+// --merge-duplicates, --remove-isolated or --orient repaired them.
 // The options after --quiet use the map once it is computed, and write nothing if it is not
 // valid (see the usage string below for each).
 // Exit status: 0 for a valid map, 2 for a map that is not valid, 1 for bad input or usage
@@ -41,6 +42,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -66,6 +68,7 @@ namespace {
 struct Soup_repairs
 {
   bool merge_duplicates = false;  // one vertex per distinct point
+  bool remove_isolated = false;   // no vertex without a face
   bool orient = false;            // faces oriented consistently
 };
 
@@ -101,8 +104,8 @@ const char* usage =
   "                   inverse_dirichlet|symmetric_dirichlet]\n"
   "         [--area-preservation T] [--weights A [B]] [--pipeline robust|paper] [--init central|FILE]\n"
   "         [--max-iterations N]\n"
-  "         [--time-limit SECONDS] [--no-correction] [--triangulate] [--merge-duplicates] [--orient]\n"
-  "         [--quiet]\n"
+  "         [--time-limit SECONDS] [--no-correction] [--triangulate] [--merge-duplicates]\n"
+  "         [--remove-isolated] [--orient] [--quiet]\n"
   "         [--remesh-icosphere LEVEL OUT] [--geometry-image N OUT]\n"
   "         [--map-to OTHER_MESH OTHER_SPHERE OUT [--landmarks FILE]]\n"
   "         [--texture equirectangular|octahedral OUT.obj]\n"
@@ -116,6 +119,8 @@ const char* usage =
   "  --merge-duplicates             weld the vertices that share a point (a mesh split at its seams,\n"
   "                                 or one with a copy of each vertex per face); OUTPUT then has one\n"
   "                                 vertex per distinct point, in the order of their first copies\n"
+  "  --remove-isolated              drop the vertices that no face uses; OUTPUT then has the others,\n"
+  "                                 in their order\n"
   "  --orient                       read a soup whose faces are not consistently oriented (CGAL's\n"
   "                                 orient_polygon_soup); OUTPUT then has the reoriented faces, and\n"
   "                                 the vertices it had to duplicate at non-manifold points last\n"
@@ -190,6 +195,7 @@ Options parse_options(int argc, char** argv)
     else if(arg == "--no-correction") o.correction = false;
     else if(arg == "--triangulate") o.triangulate = true;
     else if(arg == "--merge-duplicates") o.repairs.merge_duplicates = true;
+    else if(arg == "--remove-isolated") o.repairs.remove_isolated = true;
     else if(arg == "--orient") o.repairs.orient = true;
     else if(arg == "--quiet") o.quiet = true;
     else if(arg == "--remesh-icosphere") {
@@ -243,6 +249,28 @@ bool is_indexed_soup(std::size_t point_count, const std::vector<std::vector<std:
   return true;
 }
 
+// Removes the points that no polygon uses, the others kept in their order; returns how many.
+std::size_t remove_unused_points(std::vector<Point>& points, std::vector<std::vector<std::size_t>>& polygons)
+{
+  const std::size_t unused = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> new_index(points.size(), unused);
+  for(const auto& polygon : polygons)
+    for(std::size_t i : polygon)
+      new_index[i] = 0;
+  std::size_t kept = 0;
+  for(std::size_t i = 0; i < points.size(); ++i)
+    if(new_index[i] != unused) {
+      new_index[i] = kept;
+      points[kept++] = points[i];
+    }
+  const std::size_t removed = points.size() - kept;
+  points.resize(kept);
+  for(auto& polygon : polygons)
+    for(std::size_t& i : polygon)
+      i = new_index[i];
+  return removed;
+}
+
 // Reads a polygon mesh; a file that reads as a polygon soup but not as a mesh is named as such,
 // unless the `repairs` asked for make it one.
 Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {})
@@ -256,7 +284,7 @@ Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {})
   std::vector<std::vector<std::size_t>> polygons;
   bool is_soup = false;
   try {
-    if(!repairs.merge_duplicates && CGAL::IO::read_polygon_mesh(path, mesh, CGAL::parameters::verbose(false)))
+    if(!repairs.merge_duplicates && !repairs.remove_isolated && CGAL::IO::read_polygon_mesh(path, mesh, CGAL::parameters::verbose(false)))
       return mesh;
     is_soup = CGAL::IO::read_polygon_soup(path, points, polygons) && !polygons.empty();
   } catch(const std::exception& e) {
@@ -266,6 +294,10 @@ Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {})
   if(!is_soup)
     fail("cannot read " + path + ": not a valid mesh file");
   const std::string not_a_surface = "cannot read " + path + " as a surface: its " + std::to_string(polygons.size()) + " faces ";
+  if(repairs.remove_isolated && is_indexed_soup(points.size(), polygons)) {
+    const std::size_t removed = remove_unused_points(points, polygons);
+    std::cerr << "spherical_parameterize: --remove-isolated removed " << removed << " vertices of " << path << "\n";
+  }
   // Points compare lexicographically, and a NaN compares equal to any point: such a file is
   // left for the package's check of the input to refuse.
   const bool finite = std::all_of(points.begin(), points.end(), [](const Point& p) {
@@ -660,9 +692,11 @@ int main(int argc, char** argv)
     const bool split = r.status == SP::Error_code::NOT_CLOSED || r.status == SP::Error_code::NOT_CONNECTED ||
                        r.status == SP::Error_code::NOT_GENUS_ZERO;
     const std::size_t shared = split && !o.repairs.merge_duplicates ? shared_points(mesh) : 0;
+    const bool isolated = r.status == SP::Error_code::ISOLATED_VERTICES && !o.repairs.remove_isolated;
     fail(o.input + ": " + quote_status(r) +
          (shared ? "; " + std::to_string(shared) + " vertices share their point with another: the option "
-                   "--merge-duplicates welds them" : ""));
+                   "--merge-duplicates welds them" : "") +
+         (isolated ? "; the option --remove-isolated drops them" : ""));
   }
 
   const SP::Distortion_report d = SP::measure_distortion(mesh, sphere);
