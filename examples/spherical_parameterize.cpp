@@ -271,6 +271,13 @@ std::size_t remove_unused_points(std::vector<Point>& points, std::vector<std::ve
   return removed;
 }
 
+bool all_finite(const std::vector<Point>& points)
+{
+  return std::all_of(points.begin(), points.end(), [](const Point& p) {
+    return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
+  });
+}
+
 // Reads a polygon mesh; a file that reads as a polygon soup but not as a mesh is named as such,
 // unless the `repairs` asked for make it one.
 Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {})
@@ -294,22 +301,22 @@ Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {})
   if(!is_soup)
     fail("cannot read " + path + ": not a valid mesh file");
   const std::string not_a_surface = "cannot read " + path + " as a surface: its " + std::to_string(polygons.size()) + " faces ";
-  if(repairs.remove_isolated && is_indexed_soup(points.size(), polygons)) {
+  // Checked before the repairs, which take it for granted.
+  const std::string not_indexed = "include one with fewer than three distinct vertices or a vertex index out of range";
+  if(!is_indexed_soup(points.size(), polygons))
+    fail(not_a_surface + not_indexed);
+  if(repairs.remove_isolated) {
     const std::size_t removed = remove_unused_points(points, polygons);
     std::cerr << "spherical_parameterize: --remove-isolated removed " << removed << " vertices of " << path << "\n";
   }
   // Points compare lexicographically, and a NaN compares equal to any point: such a file is
   // left for the package's check of the input to refuse.
-  const bool finite = std::all_of(points.begin(), points.end(), [](const Point& p) {
-    return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
-  });
-  if(repairs.merge_duplicates && finite) {
+  if(repairs.merge_duplicates && all_finite(points)) {
     const std::size_t welded = PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
     std::cerr << "spherical_parameterize: --merge-duplicates welded " << welded << " vertices of " << path << "\n";
+    if(welded > 0 && !is_indexed_soup(points.size(), polygons))  // a face lost a corner to the welding
+      fail(not_a_surface + not_indexed);
   }
-  // After the welding too: a face may have lost a corner to it.
-  if(!is_indexed_soup(points.size(), polygons))
-    fail(not_a_surface + "include one with fewer than three distinct vertices or a vertex index out of range");
   const std::string why = "do not form an oriented 2-manifold (non-manifold vertices or edges, or inconsistent orientation)";
   const std::size_t read_points = points.size();
   if(repairs.orient)
