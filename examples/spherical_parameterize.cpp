@@ -9,8 +9,10 @@
 //                          [--map-to OTHER_MESH OTHER_SPHERE OUT [--landmarks FILE]]
 //                          [--texture equirectangular|octahedral OUT.obj]
 //
+// INPUT: .off, .obj, .ply, .stl, or a FreeSurfer triangle surface (`lh.white`, ...).
 // OUTPUT (.off or .obj) has the input's vertices in the same order and the same faces, unless
-// --merge-duplicates, --remove-isolated or --orient repaired them.
+// --merge-duplicates, --remove-isolated or --orient repaired them; for a FreeSurfer INPUT,
+// an OUTPUT of any other name is a FreeSurfer sphere of radius 100, as FreeSurfer's own.
 // The options after --quiet use the map once it is computed, and write nothing if it is not
 // valid (see the usage string below for each).
 // Exit status: 0 for a valid map, 2 for a map that is not valid, 1 for bad input or usage
@@ -33,8 +35,10 @@
 #include <CGAL/Spherical_parameterization/texture_coordinates.h>
 
 #include "../tools/process_tuning.h"
+#include "freesurfer_surface.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -109,6 +113,9 @@ const char* usage =
   "         [--remesh-icosphere LEVEL OUT] [--geometry-image N OUT]\n"
   "         [--map-to OTHER_MESH OTHER_SPHERE OUT [--landmarks FILE]]\n"
   "         [--texture equirectangular|octahedral OUT.obj]\n"
+  "  INPUT                          .off, .obj, .ply, .stl, or a FreeSurfer triangle surface (lh.white, ...)\n"
+  "  OUTPUT                         .off or .obj: the map, on the unit sphere; for a FreeSurfer INPUT, any\n"
+  "                                 other name writes a FreeSurfer sphere of radius 100 (float32)\n"
   "  --energy NAME                  default balanced: (1 - T) conformal + T area distortion\n"
   "  --area-preservation T          the balanced energy's knob, from 0 (conformal) to 1 (equal-area);\n"
   "                                 default 0.5, which keeps protrusions for a resampling\n"
@@ -134,7 +141,7 @@ const char* usage =
   "  --map-to OTHER_MESH OTHER_SPHERE OUT\n"
   "                                 INPUT with every vertex moved to its image on OTHER_MESH, through\n"
   "                                 both sphere maps (OTHER_SPHERE: the map of OTHER_MESH as this tool\n"
-  "                                 writes it); OUT .off or .obj\n"
+  "                                 writes it, or FreeSurfer's sphere of it); OUT .off or .obj\n"
   "  --landmarks FILE               for --map-to: lines 'I J' pairing vertex I of INPUT with vertex J\n"
   "                                 of OTHER_MESH (0-based); the spheres are rotated to match them\n"
   "  --texture LAYOUT OUT.obj       INPUT with texture coordinates from the sphere, vertices split on\n"
@@ -278,28 +285,52 @@ bool all_finite(const std::vector<Point>& points)
   });
 }
 
+// The points and faces of a FreeSurfer triangle surface, as a soup.
+void read_freesurfer_soup(const std::string& path, std::vector<Point>& points,
+                          std::vector<std::vector<std::size_t>>& polygons)
+{
+  try {
+    freesurfer::Surface surface = freesurfer::read_surface(path);
+    points.reserve(surface.points.size());
+    for(const auto& p : surface.points) points.emplace_back(p[0], p[1], p[2]);
+    polygons = std::move(surface.triangles);
+  } catch(const std::exception& e) {
+    fail("cannot read " + path + ": " + e.what());
+  }
+  if(polygons.empty())
+    fail("cannot read " + path + ": a FreeSurfer surface without faces");
+}
+
 // Reads a polygon mesh; a file that reads as a polygon soup but not as a mesh is named as such,
 // unless the `repairs` asked for make it one.
 Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {})
 {
   if(!std::filesystem::exists(path)) fail("cannot open " + path + ": no such file");
-  const std::string ext = extension(path);
-  if(ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl")
-    fail("cannot read " + path + ": unknown extension (use .off, .obj, .ply or .stl)");
   Mesh mesh;
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
-  bool is_soup = false;
-  try {
-    if(!repairs.merge_duplicates && !repairs.remove_isolated && CGAL::IO::read_polygon_mesh(path, mesh, CGAL::parameters::verbose(false)))
-      return mesh;
-    is_soup = CGAL::IO::read_polygon_soup(path, points, polygons) && !polygons.empty();
-  } catch(const std::exception& e) {
-    // CGAL's readers throw (bad_alloc, length_error) on absurd counts in a corrupted header.
-    fail("cannot read " + path + ": not a valid mesh file (" + e.what() + ")");
+  const freesurfer::File_kind kind = freesurfer::file_kind(path);
+  if(kind == freesurfer::File_kind::QUADRANGLES)
+    fail("cannot read " + path + ": FreeSurfer's quadrangle format is not read (write the surface as triangles, "
+         "as mris_convert does)");
+  if(kind == freesurfer::File_kind::TRIANGLES) {
+    read_freesurfer_soup(path, points, polygons);
+  } else {
+    const std::string ext = extension(path);
+    if(ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl")
+      fail("cannot read " + path + ": unknown extension (use .off, .obj, .ply, .stl or a FreeSurfer surface)");
+    bool is_soup = false;
+    try {
+      if(!repairs.merge_duplicates && !repairs.remove_isolated && CGAL::IO::read_polygon_mesh(path, mesh, CGAL::parameters::verbose(false)))
+        return mesh;
+      is_soup = CGAL::IO::read_polygon_soup(path, points, polygons) && !polygons.empty();
+    } catch(const std::exception& e) {
+      // CGAL's readers throw (bad_alloc, length_error) on absurd counts in a corrupted header.
+      fail("cannot read " + path + ": not a valid mesh file (" + e.what() + ")");
+    }
+    if(!is_soup)
+      fail("cannot read " + path + ": not a valid mesh file");
   }
-  if(!is_soup)
-    fail("cannot read " + path + ": not a valid mesh file");
   const std::string not_a_surface = "cannot read " + path + " as a surface: its " + std::to_string(polygons.size()) + " faces ";
   // Checked before the repairs, which take it for granted.
   const std::string not_indexed = "include one with fewer than three distinct vertices or a vertex index out of range";
@@ -329,6 +360,23 @@ Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {})
     std::cerr << "spherical_parameterize: --orient duplicated " << points.size() - read_points
               << " vertices of " << path << " at non-manifold points\n";
   return mesh;
+}
+
+// FreeSurfer's spheres (`mris_sphere`) have this radius; the tool reads and writes theirs so.
+constexpr double freesurfer_sphere_radius = 100;
+
+// A sphere map read from a file (--init, OTHER_SPHERE); a FreeSurfer sphere is scaled to the
+// unit sphere.
+Mesh read_sphere_mesh(const std::string& path)
+{
+  Mesh sphere = read_mesh(path);
+  if(freesurfer::file_kind(path) == freesurfer::File_kind::TRIANGLES)
+    for(auto v : sphere.vertices()) {
+      const Point& p = sphere.point(v);
+      const double r = std::sqrt((p - CGAL::ORIGIN).squared_length());
+      if(r > 0) sphere.point(v) = CGAL::ORIGIN + (p - CGAL::ORIGIN) / r;
+    }
+  return sphere;
 }
 
 // The number of vertices whose point another vertex has already.
@@ -451,11 +499,20 @@ std::filesystem::path comparable_path(const std::string& path)
 // True if the two paths name the same file, existing or not.
 bool same_file(const std::string& a, const std::string& b) { return comparable_path(a) == comparable_path(b); }
 
+// True if OUTPUT is a FreeSurfer surface: the input is one, and OUTPUT's name is not that of
+// another mesh format (FreeSurfer's names are free: `lh.sphere`, `lh.sphere.mine`).
+bool writes_freesurfer(const Options& o)
+{
+  const std::string ext = extension(o.output);
+  return ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl" &&
+         freesurfer::file_kind(o.input) == freesurfer::File_kind::TRIANGLES;
+}
+
 // Every output is checked before the solve, so that a wrong path costs no solve and leaves no
 // partial set of outputs behind; none may be a file the tool reads, or another output.
 void check_output_paths(const Options& o)
 {
-  check_output_path("", o.output, {".off", ".obj"});
+  if(!writes_freesurfer(o)) check_output_path("", o.output, {".off", ".obj"});
   if(!o.icosphere_output.empty()) check_output_path(" (--remesh-icosphere)", o.icosphere_output, {".off", ".obj"});
   if(!o.image_output.empty()) check_output_path(" (--geometry-image)", o.image_output, {".pfm", ".off", ".obj"});
   if(!o.map_output.empty()) check_output_path(" (--map-to)", o.map_output, {".off", ".obj"});
@@ -594,7 +651,7 @@ struct Other_surface
 void read_other_surface(const Options& o, std::size_t input_vertices, Other_surface& other)
 {
   other.mesh = read_mesh(o.other_mesh, o.repairs);
-  const Mesh other_points_on_sphere = read_mesh(o.other_sphere);
+  const Mesh other_points_on_sphere = read_sphere_mesh(o.other_sphere);
   if(other_points_on_sphere.number_of_vertices() != other.mesh.number_of_vertices() ||
      other_points_on_sphere.number_of_faces() != other.mesh.number_of_faces())
     fail(o.other_sphere + " does not have the vertices and faces of " + o.other_mesh);
@@ -641,6 +698,45 @@ void write_textured_obj(const Options& o, const Mesh& mesh, const Sphere_map& sp
               << texture.singular_faces << " around a singular point\n";
 }
 
+// OUTPUT as FreeSurfer's spheres are: radius 100, float32, the input's tags (its volume
+// geometry) after the faces. The rounding to float32 may flip faces that the map squeezes
+// to a sliver; the tool says so, and where the exact map is.
+void write_freesurfer_sphere(const Options& o, const Mesh& mesh, const Sphere_map& sphere,
+                             const SP::Distortion_report& exact)
+{
+  std::vector<std::array<double, 3>> points;
+  points.reserve(mesh.number_of_vertices());
+  for(auto v : mesh.vertices()) {
+    const Point& p = sphere[v];
+    points.push_back({freesurfer_sphere_radius * p.x(), freesurfer_sphere_radius * p.y(), freesurfer_sphere_radius * p.z()});
+  }
+  std::vector<std::array<std::size_t, 3>> triangles;
+  triangles.reserve(mesh.number_of_faces());
+  for(auto f : mesh.faces()) {
+    std::array<std::size_t, 3> t;
+    std::size_t k = 0;
+    for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) t[k++] = std::size_t(v);
+    triangles.push_back(t);
+  }
+  const std::string tags = freesurfer::read_surface(o.input).tags;
+  write_stream(o.output, std::ios::binary, [&](std::ostream& out) {
+    return freesurfer::write_surface(out, points, triangles, tags, "spherical_parameterize");
+  });
+
+  Mesh rounded = mesh;
+  std::size_t i = 0;
+  for(auto v : rounded.vertices()) {
+    const auto& p = points[i++];
+    rounded.point(v) = Point(float(p[0]) / freesurfer_sphere_radius, float(p[1]) / freesurfer_sphere_radius,
+                             float(p[2]) / freesurfer_sphere_radius);
+  }
+  const SP::Distortion_report r = SP::measure_distortion(mesh, rounded.points());
+  const std::size_t lost = r.flipped + r.degenerate, had = exact.flipped + exact.degenerate;
+  if(lost > had)
+    std::cerr << "spherical_parameterize: warning: rounded to float32 for " << o.output << ", " << lost - had
+              << " more faces are flipped or degenerate than in the map; an OUTPUT ending in .off has the exact map\n";
+}
+
 bool uses_the_map(const Options& o)
 {
   return !o.icosphere_output.empty() || !o.image_output.empty() || !o.map_output.empty() || !o.texture_output.empty();
@@ -682,7 +778,7 @@ int main(int argc, char** argv)
   if(o.init == "central") {
     r = run(o, mesh, sphere, CGAL::parameters::default_values());
   } else {
-    const Mesh start = read_mesh(o.init);
+    const Mesh start = read_sphere_mesh(o.init);
     if(start.number_of_vertices() != mesh.number_of_vertices())
       fail("--init " + o.init + " has " + std::to_string(start.number_of_vertices()) + " vertices, the input " +
            std::to_string(mesh.number_of_vertices()));
@@ -707,9 +803,13 @@ int main(int argc, char** argv)
   }
 
   const SP::Distortion_report d = SP::measure_distortion(mesh, sphere);
-  Mesh sphere_mesh = mesh;
-  for(auto v : sphere_mesh.vertices()) sphere_mesh.point(v) = sphere[v];
-  write_mesh(sphere_mesh, o.output);
+  if(writes_freesurfer(o)) {
+    write_freesurfer_sphere(o, mesh, sphere, d);
+  } else {
+    Mesh sphere_mesh = mesh;
+    for(auto v : sphere_mesh.vertices()) sphere_mesh.point(v) = sphere[v];
+    write_mesh(sphere_mesh, o.output);
+  }
   if(!o.quiet) {
     print_report(o, mesh, r, d);
     warn_if_squeezed(o, d);

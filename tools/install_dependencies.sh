@@ -4,7 +4,7 @@
 set -euo pipefail
 [ "${SKIP_APT:-0}" = 1 ] && exit 0
 packages=(cmake g++ make libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev doxygen libopenblas0-pthread
-          libtbb-dev libsuitesparse-dev libcgal-demo libopenmesh-dev python3-matplotlib python3-numpy python3-scipy)
+          libtbb-dev libsuitesparse-dev libcgal-demo libopenmesh-dev python3-matplotlib python3-numpy python3-scipy python3-nibabel)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
