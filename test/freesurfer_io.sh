@@ -1,17 +1,19 @@
 #!/bin/bash
-# usage: freesurfer_io.sh TOOL MESH WORK_DIR
+# usage: freesurfer_io.sh TOOL MESH WORK_DIR CHECKER
 # The command line tool on FreeSurfer triangle surfaces, checked against NiBabel's reader and
 # writer of the format (an implementation apart from the tool's): MESH written by NiBabel as
 # `lh.white` with a volume geometry; its map written as `lh.sphere` must read back in NiBabel
 # with the input's faces, radius 100, the volume geometry kept and the points of the .off
 # map; the FreeSurfer sphere must serve as --map-to's OTHER_SPHERE; broken files and a .ply
-# OUTPUT are refused with nothing written. Exits 77 (a skip) without a Python with NiBabel.
-tool=$1 mesh=$2 work=$3
+# OUTPUT are refused with nothing written; CHECKER (tools/check_sphere_map.py) reads the pair
+# as FreeSurfer files and finds the default's bounds met. Exits 77 (a skip) without a Python
+# with NiBabel, NumPy and SciPy.
+tool=$1 mesh=$2 work=$3 checker=$4
 python=""
 for candidate in python3 /usr/bin/python3; do
-  if "$candidate" -c 'import nibabel, numpy' 2>/dev/null; then python=$candidate; break; fi
+  if "$candidate" -c 'import nibabel, numpy, scipy' 2>/dev/null; then python=$candidate; break; fi
 done
-test -n "$python" || { echo "skipped: no python3 with NiBabel"; exit 77; }
+test -n "$python" || { echo "skipped: no python3 with NiBabel, NumPy and SciPy"; exit 77; }
 mkdir -p "$work" && cd "$work" || exit 1
 rm -f lh.* *.off *.err
 
@@ -47,6 +49,7 @@ diagonal = np.linalg.norm(white.max(0) - white.min(0))
 assert np.max(np.linalg.norm(onto - white, axis=1)) < 1e-4 * diagonal, 'a surface mapped onto itself moved'
 print('lh.sphere: the faces of lh.white, radius 100, its volume geometry, the .off map to float precision')
 EOF
+"$python" "$checker" lh.white lh.sphere --bounds || exit 1
 
 head -c 200 lh.white > lh.truncated
 printf '\xff\xff\xff' > lh.quadrangles

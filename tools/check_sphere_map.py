@@ -5,7 +5,8 @@
                         [--cli-report REPORT] [--bounds]
 
 SPHERE.off is the map as the command line tool writes it: INPUT's vertices, in the same order,
-moved onto the unit sphere, and the same faces. Prints, from the two files alone:
+moved onto the unit sphere, and the same faces. Both may be FreeSurfer triangle surfaces
+instead (`lh.white lh.sphere`), the sphere's radius 100 scaled to 1. Prints, from the two files alone:
 - validity: the largest | |x| - 1 |, the faces whose orientation differs from the input's, and
   the map's degree (the sum of the faces' signed solid angles over 4 pi);
 - the smallest area ratio (a face's share of the sphere over its share of the input's area)
@@ -43,6 +44,32 @@ def read_off(path):
             sys.exit(f'{path}: a face is not a triangle')
         faces.append([int(t) for t in line[1:4]])
     return points, np.array(faces, dtype=np.int64)
+
+
+def read_freesurfer(path):
+    """A FreeSurfer triangle surface (big-endian: magic, two text lines, counts, points, faces)."""
+    data = open(path, 'rb').read()
+    at = 3
+    for _ in range(2):
+        at = data.index(b'\n', at) + 1
+    nv, nf = np.frombuffer(data, '>i4', 2, at)
+    at += 8
+    points = np.frombuffer(data, '>f4', 3 * nv, at).reshape(-1, 3).astype(float)
+    faces = np.frombuffer(data, '>i4', 3 * nf, at + 12 * nv).reshape(-1, 3).astype(np.int64)
+    return points, faces
+
+
+def read_mesh(path, on_sphere=False):
+    """OFF, or a FreeSurfer triangle surface by its magic number; a FreeSurfer sphere (radius
+    100) is scaled to the unit sphere."""
+    with open(path, 'rb') as f:
+        is_freesurfer = f.read(3) == b'\xff\xff\xfe'
+    if not is_freesurfer:
+        return read_off(path)
+    points, faces = read_freesurfer(path)
+    if on_sphere:
+        points /= np.linalg.norm(points, axis=1)[:, None]
+    return points, faces
 
 
 def icosphere(level):
@@ -262,8 +289,8 @@ def main():
     parser.add_argument('--cli-report', metavar='REPORT')
     parser.add_argument('--bounds', action='store_true')
     args = parser.parse_args()
-    points, faces = read_off(args.input)
-    sphere, sphere_faces = read_off(args.sphere)
+    points, faces = read_mesh(args.input)
+    sphere, sphere_faces = read_mesh(args.sphere, on_sphere=True)
     if len(sphere) != len(points) or not np.array_equal(faces, sphere_faces):
         sys.exit('the map does not have the input\'s vertices and faces')
     found = figures(points, sphere, faces, args.level, args.rotation)
