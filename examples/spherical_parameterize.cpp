@@ -19,6 +19,7 @@
 // (every input file and output path is checked before the solve: nothing written).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -285,6 +286,29 @@ bool all_finite(const std::vector<Point>& points)
   });
 }
 
+// The soup as a mesh, one vertex per point in their order and the faces added one by one, as
+// CGAL's readers build theirs: several times cheaper than the soup's own checks on a large
+// surface. False, `mesh` cleared, at a face that would not keep the mesh an oriented
+// 2-manifold; those checks then say why.
+bool build_face_by_face(const std::vector<Point>& points, const std::vector<std::vector<std::size_t>>& polygons,
+                        Mesh& mesh)
+{
+  mesh.clear();
+  mesh.reserve(Mesh::size_type(points.size()), Mesh::size_type(3 * polygons.size() / 2),
+               Mesh::size_type(polygons.size()));
+  for(const Point& p : points) mesh.add_vertex(p);
+  std::vector<Mesh::Vertex_index> corners;
+  for(const std::vector<std::size_t>& polygon : polygons) {
+    corners.clear();
+    for(std::size_t i : polygon) corners.push_back(Mesh::Vertex_index(Mesh::size_type(i)));
+    if(CGAL::Euler::add_face(corners, mesh) == Mesh::null_face()) {
+      mesh.clear();
+      return false;
+    }
+  }
+  return true;
+}
+
 // The points and faces of a FreeSurfer triangle surface, as a soup.
 void read_freesurfer_soup(const std::string& path, std::vector<Point>& points,
                           std::vector<std::vector<std::size_t>>& polygons)
@@ -352,10 +376,12 @@ Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {})
   const std::size_t read_points = points.size();
   if(repairs.orient)
     PMP::orient_polygon_soup(points, polygons);  // appends the points it duplicates
-  if(!PMP::is_polygon_soup_a_polygon_mesh(polygons))
-    fail(not_a_surface + why + (repairs.orient ? ", even after --orient" : "; the option --orient can repair it"));
-  mesh.clear();  // the failed read may have left part of the file in it
-  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  if(!build_face_by_face(points, polygons, mesh)) {
+    if(!PMP::is_polygon_soup_a_polygon_mesh(polygons))
+      fail(not_a_surface + why + (repairs.orient ? ", even after --orient" : "; the option --orient can repair it"));
+    mesh.clear();
+    PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  }
   if(points.size() > read_points)
     std::cerr << "spherical_parameterize: --orient duplicated " << points.size() - read_points
               << " vertices of " << path << " at non-manifold points\n";
