@@ -12,7 +12,8 @@
 // INPUT: .off, .obj, .ply, .stl, or a FreeSurfer triangle surface (`lh.white`, ...).
 // OUTPUT (.off or .obj) has the input's vertices in the same order and the same faces, unless
 // --merge-duplicates, --remove-isolated or --orient repaired them; for a FreeSurfer INPUT,
-// an OUTPUT of any other name is a FreeSurfer sphere of radius 100, as FreeSurfer's own.
+// an OUTPUT of any other name is a FreeSurfer sphere of radius 100, as FreeSurfer's own, and
+// so are the remesh and --map-to's output FreeSurfer surfaces.
 // The options after --quiet use the map once it is computed, and write nothing if it is not
 // valid (see the usage string below for each).
 // Exit status: 0 for a valid map, 2 for a map that is not valid, 1 for bad input or usage
@@ -134,15 +135,17 @@ const char* usage =
   "                                 the vertices it had to duplicate at non-manifold points last\n"
   "Uses of the map (written only if the map is valid):\n"
   "  --remesh-icosphere LEVEL OUT   the surface resampled on a geodesic icosphere of subdivision LEVEL\n"
-  "                                 (0 to 9: 20 * 4^LEVEL faces); OUT .off or .obj; prints the\n"
-  "                                 distance from the input's vertices and face centroids to it\n"
+  "                                 (0 to 9: 20 * 4^LEVEL faces); OUT .off or .obj (or FreeSurfer's\n"
+  "                                 format, as OUTPUT); prints the distance from the input's vertices\n"
+  "                                 and face centroids to it\n"
   "  --geometry-image N OUT         the surface sampled on an N x N octahedral grid (N odd, 3 to 4097);\n"
   "                                 OUT .pfm: the float image (x, y, z per pixel, bottom row first),\n"
   "                                 OUT .off or .obj: its closed mesh\n"
   "  --map-to OTHER_MESH OTHER_SPHERE OUT\n"
   "                                 INPUT with every vertex moved to its image on OTHER_MESH, through\n"
   "                                 both sphere maps (OTHER_SPHERE: the map of OTHER_MESH as this tool\n"
-  "                                 writes it, or FreeSurfer's sphere of it); OUT .off or .obj\n"
+  "                                 writes it, or FreeSurfer's sphere of it); OUT .off or .obj (or\n"
+  "                                 FreeSurfer's format, as OUTPUT)\n"
   "  --landmarks FILE               for --map-to: lines 'I J' pairing vertex I of INPUT with vertex J\n"
   "                                 of OTHER_MESH (0-based); the spheres are rotated to match them\n"
   "  --texture LAYOUT OUT.obj       INPUT with texture coordinates from the sphere, vertices split on\n"
@@ -525,11 +528,12 @@ std::filesystem::path comparable_path(const std::string& path)
 // True if the two paths name the same file, existing or not.
 bool same_file(const std::string& a, const std::string& b) { return comparable_path(a) == comparable_path(b); }
 
-// True if OUTPUT is a FreeSurfer surface: the input is one, and OUTPUT's name is not that of
-// another mesh format (FreeSurfer's names are free: `lh.sphere`, `lh.sphere.mine`).
-bool writes_freesurfer(const Options& o)
+// True if the mesh output `path` (OUTPUT, --remesh-icosphere's, --map-to's) is a FreeSurfer
+// surface: the input is one, and `path` is not named as another mesh format (FreeSurfer's
+// names are free: `lh.sphere`, `lh.ico7.white`).
+bool writes_freesurfer(const Options& o, const std::string& path)
 {
-  const std::string ext = extension(o.output);
+  const std::string ext = extension(path);
   return ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl" &&
          freesurfer::file_kind(o.input) == freesurfer::File_kind::TRIANGLES;
 }
@@ -538,10 +542,12 @@ bool writes_freesurfer(const Options& o)
 // partial set of outputs behind; none may be a file the tool reads, or another output.
 void check_output_paths(const Options& o)
 {
-  if(!writes_freesurfer(o)) check_output_path("", o.output, {".off", ".obj"});
-  if(!o.icosphere_output.empty()) check_output_path(" (--remesh-icosphere)", o.icosphere_output, {".off", ".obj"});
+  if(!writes_freesurfer(o, o.output)) check_output_path("", o.output, {".off", ".obj"});
+  if(!o.icosphere_output.empty() && !writes_freesurfer(o, o.icosphere_output))
+    check_output_path(" (--remesh-icosphere)", o.icosphere_output, {".off", ".obj"});
   if(!o.image_output.empty()) check_output_path(" (--geometry-image)", o.image_output, {".pfm", ".off", ".obj"});
-  if(!o.map_output.empty()) check_output_path(" (--map-to)", o.map_output, {".off", ".obj"});
+  if(!o.map_output.empty() && !writes_freesurfer(o, o.map_output))
+    check_output_path(" (--map-to)", o.map_output, {".off", ".obj"});
   if(!o.texture_output.empty()) check_output_path(" (--texture)", o.texture_output, {".obj"});
 
   std::vector<std::string> outputs{o.output, o.icosphere_output, o.image_output, o.map_output, o.texture_output};
@@ -555,6 +561,38 @@ void check_output_paths(const Options& o)
       if(same_file(outputs[i], outputs[j]))
         fail("cannot write " + outputs[i] + " twice");
   }
+}
+// A triangle mesh as a FreeSurfer surface, with the input's tags (its volume geometry: the
+// outputs are in the input's space, or on a sphere centred in it).
+void write_freesurfer(const Options& o, const Mesh& mesh, const std::string& path)
+{
+  std::vector<std::array<double, 3>> points;
+  points.reserve(mesh.number_of_vertices());
+  for(auto v : mesh.vertices()) {
+    const Point& p = mesh.point(v);
+    points.push_back({p.x(), p.y(), p.z()});
+  }
+  std::vector<std::array<std::size_t, 3>> triangles;
+  triangles.reserve(mesh.number_of_faces());
+  for(auto f : mesh.faces()) {
+    std::array<std::size_t, 3> t;
+    std::size_t k = 0;
+    for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) t[k++] = std::size_t(v);
+    triangles.push_back(t);
+  }
+  const std::string tags = freesurfer::read_surface(o.input).tags;
+  write_stream(path, std::ios::binary, [&](std::ostream& out) {
+    return freesurfer::write_surface(out, points, triangles, tags, "spherical_parameterize");
+  });
+}
+
+// A mesh output, as FreeSurfer's format or by its extension (`writes_freesurfer()`).
+void write_surface(const Options& o, const Mesh& mesh, const std::string& path)
+{
+  if(writes_freesurfer(o, path))
+    write_freesurfer(o, mesh, path);
+  else
+    write_mesh(mesh, path);
 }
 
 // The energy of the options: the balanced energy at the knob, unless weights are given.
@@ -602,7 +640,7 @@ void write_icosphere_remesh(const Options& o, const Mesh& mesh, const Point_loca
   Mesh remeshed;
   if(!SP::remesh_on_icosphere(location, o.icosphere_level, remeshed))
     fail("the icosphere remesh is not a valid surface mesh");
-  write_mesh(remeshed, o.icosphere_output);
+  write_surface(o, remeshed, o.icosphere_output);
   if(o.quiet)
     return;
   const SP::Resampling_error error = SP::distance_to_resampled(mesh, remeshed);
@@ -702,7 +740,7 @@ void write_map_to_other(const Options& o, const Mesh& mesh, const Sphere_map& sp
   const Point_location on_other(other.mesh, other_sphere);
   Mesh mapped = mesh;  // same vertex indices: the images go straight into its points
   SP::map_to_surface(mesh, sphere, on_other, mapped.points(), rotation);
-  write_mesh(mapped, o.map_output);
+  write_surface(o, mapped, o.map_output);
   if(!o.quiet)
     std::cout << "map to surface   " << o.map_output << ": the input's vertices on " << o.other_mesh
               << (o.landmarks.empty() ? std::string() : ", spheres aligned at the landmarks (rms misfit " +
@@ -724,38 +762,19 @@ void write_textured_obj(const Options& o, const Mesh& mesh, const Sphere_map& sp
               << texture.singular_faces << " around a singular point\n";
 }
 
-// OUTPUT as FreeSurfer's spheres are: radius 100, float32, the input's tags (its volume
-// geometry) after the faces. The rounding to float32 may flip faces that the map squeezes
-// to a sliver; the tool says so, and where the exact map is.
+// OUTPUT as FreeSurfer's spheres are: radius 100, float32. The rounding to float32 may flip
+// faces that the map squeezes to a sliver; the tool says so, and where the exact map is.
 void write_freesurfer_sphere(const Options& o, const Mesh& mesh, const Sphere_map& sphere,
                              const SP::Distortion_report& exact)
 {
-  std::vector<std::array<double, 3>> points;
-  points.reserve(mesh.number_of_vertices());
+  Mesh scaled = mesh, rounded = mesh;
   for(auto v : mesh.vertices()) {
-    const Point& p = sphere[v];
-    points.push_back({freesurfer_sphere_radius * p.x(), freesurfer_sphere_radius * p.y(), freesurfer_sphere_radius * p.z()});
+    const Point p = CGAL::ORIGIN + freesurfer_sphere_radius * (sphere[v] - CGAL::ORIGIN);
+    scaled.point(v) = p;
+    rounded.point(v) = Point(float(p.x()) / freesurfer_sphere_radius, float(p.y()) / freesurfer_sphere_radius,
+                             float(p.z()) / freesurfer_sphere_radius);
   }
-  std::vector<std::array<std::size_t, 3>> triangles;
-  triangles.reserve(mesh.number_of_faces());
-  for(auto f : mesh.faces()) {
-    std::array<std::size_t, 3> t;
-    std::size_t k = 0;
-    for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) t[k++] = std::size_t(v);
-    triangles.push_back(t);
-  }
-  const std::string tags = freesurfer::read_surface(o.input).tags;
-  write_stream(o.output, std::ios::binary, [&](std::ostream& out) {
-    return freesurfer::write_surface(out, points, triangles, tags, "spherical_parameterize");
-  });
-
-  Mesh rounded = mesh;
-  std::size_t i = 0;
-  for(auto v : rounded.vertices()) {
-    const auto& p = points[i++];
-    rounded.point(v) = Point(float(p[0]) / freesurfer_sphere_radius, float(p[1]) / freesurfer_sphere_radius,
-                             float(p[2]) / freesurfer_sphere_radius);
-  }
+  write_freesurfer(o, scaled, o.output);
   const SP::Distortion_report r = SP::measure_distortion(mesh, rounded.points());
   const std::size_t lost = r.flipped + r.degenerate, had = exact.flipped + exact.degenerate;
   if(lost > had)
@@ -829,7 +848,7 @@ int main(int argc, char** argv)
   }
 
   const SP::Distortion_report d = SP::measure_distortion(mesh, sphere);
-  if(writes_freesurfer(o)) {
+  if(writes_freesurfer(o, o.output)) {
     write_freesurfer_sphere(o, mesh, sphere, d);
   } else {
     Mesh sphere_mesh = mesh;
