@@ -5,16 +5,12 @@
 # `lh.white` with a volume geometry; its map written as `lh.sphere` must read back in NiBabel
 # with the input's faces, radius 100, the volume geometry kept and the points of the .off
 # map, and so must the icosphere remesh; the FreeSurfer sphere must serve as --map-to's
-# OTHER_SPHERE; broken files and a .ply
-# OUTPUT are refused with nothing written; CHECKER (tools/check_sphere_map.py) reads the pair
-# as FreeSurfer files and finds the default's bounds met. Exits 77 (a skip) without a Python
-# with NiBabel, NumPy and SciPy.
+# OTHER_SPHERE; broken files and a .ply OUTPUT are refused with nothing written; CHECKER
+# (tools/check_sphere_map.py) reads the pair as FreeSurfer files and finds the default's
+# bounds met. Exits 77 (a skip) without a Python with NiBabel, NumPy and SciPy.
 tool=$1 mesh=$2 work=$3 checker=$4
-python=""
-for candidate in python3 /usr/bin/python3; do
-  if "$candidate" -c 'import nibabel, numpy, scipy' 2>/dev/null; then python=$candidate; break; fi
-done
-test -n "$python" || { echo "skipped: no python3 with NiBabel, NumPy and SciPy"; exit 77; }
+source "$(dirname "$0")/python_with.sh"
+python=$(python_with nibabel numpy scipy) || { echo "skipped: no python3 with NiBabel, NumPy and SciPy"; exit 77; }
 mkdir -p "$work" && cd "$work" || exit 1
 rm -f lh.* *.off *.err
 

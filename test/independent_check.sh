@@ -6,11 +6,8 @@
 # MESH or without a Python that has NumPy and SciPy.
 tool=$1 mesh=$2 checker=$3 work=$4
 test -e "$mesh" || { echo "skipped: no $mesh"; exit 77; }
-python=""
-for candidate in python3 /usr/bin/python3; do
-  if "$candidate" -c 'import numpy, scipy' 2>/dev/null; then python=$candidate; break; fi
-done
-test -n "$python" || { echo "skipped: no python3 with NumPy and SciPy"; exit 77; }
+source "$(dirname "$0")/python_with.sh"
+python=$(python_with numpy scipy) || { echo "skipped: no python3 with NumPy and SciPy"; exit 77; }
 mkdir -p "$work" && cd "$work" || exit 1
 rm -f sphere.off icosphere.off report.txt
 "$tool" "$mesh" sphere.off --remesh-icosphere 6 icosphere.off > report.txt || { cat report.txt; exit 1; }
