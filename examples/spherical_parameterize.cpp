@@ -499,11 +499,12 @@ void write_stream(const std::string& path, std::ios::openmode mode, const std::f
   });
 }
 
-// Fails unless `path` ends in one of `extensions` and its folder exists.
+// Fails unless `path` ends in one of `extensions` (any name if there are none) and its folder
+// exists.
 void check_output_path(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions)
 {
   const std::filesystem::path file(path);
-  if(std::find(extensions.begin(), extensions.end(), extension(path)) == extensions.end()) {
+  if(!extensions.empty() && std::find(extensions.begin(), extensions.end(), extension(path)) == extensions.end()) {
     std::string allowed;
     for(const std::string& e : extensions) allowed += (allowed.empty() ? "" : ", ") + e;
     fail("cannot write " + path + flag + ": use " + allowed);
@@ -542,12 +543,13 @@ bool writes_freesurfer(const Options& o, const std::string& path)
 // partial set of outputs behind; none may be a file the tool reads, or another output.
 void check_output_paths(const Options& o)
 {
-  if(!writes_freesurfer(o, o.output)) check_output_path("", o.output, {".off", ".obj"});
-  if(!o.icosphere_output.empty() && !writes_freesurfer(o, o.icosphere_output))
-    check_output_path(" (--remesh-icosphere)", o.icosphere_output, {".off", ".obj"});
+  const auto mesh_formats = [&o](const std::string& path) {
+    return writes_freesurfer(o, path) ? std::vector<std::string>{} : std::vector<std::string>{".off", ".obj"};
+  };
+  check_output_path("", o.output, mesh_formats(o.output));
+  if(!o.icosphere_output.empty()) check_output_path(" (--remesh-icosphere)", o.icosphere_output, mesh_formats(o.icosphere_output));
   if(!o.image_output.empty()) check_output_path(" (--geometry-image)", o.image_output, {".pfm", ".off", ".obj"});
-  if(!o.map_output.empty() && !writes_freesurfer(o, o.map_output))
-    check_output_path(" (--map-to)", o.map_output, {".off", ".obj"});
+  if(!o.map_output.empty()) check_output_path(" (--map-to)", o.map_output, mesh_formats(o.map_output));
   if(!o.texture_output.empty()) check_output_path(" (--texture)", o.texture_output, {".obj"});
 
   std::vector<std::string> outputs{o.output, o.icosphere_output, o.image_output, o.map_output, o.texture_output};

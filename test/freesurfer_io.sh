@@ -5,9 +5,9 @@
 # `lh.white` with a volume geometry; its map written as `lh.sphere` must read back in NiBabel
 # with the input's faces, radius 100, the volume geometry kept and the points of the .off
 # map, and so must the icosphere remesh; the FreeSurfer sphere must serve as --map-to's
-# OTHER_SPHERE; broken files and a .ply OUTPUT are refused with nothing written; CHECKER
-# (tools/check_sphere_map.py) reads the pair as FreeSurfer files and finds the default's
-# bounds met. Exits 77 (a skip) without a Python with NiBabel, NumPy and SciPy.
+# OTHER_SPHERE; broken files, a .ply OUTPUT and a missing folder are refused with nothing
+# written; CHECKER (tools/check_sphere_map.py) reads the pair as FreeSurfer files and finds
+# the default's bounds met. Exits 77 (a skip) without a Python with NiBabel, NumPy and SciPy.
 tool=$1 mesh=$2 work=$3 checker=$4
 source "$(dirname "$0")/python_with.sh"
 python=$(python_with nibabel numpy scipy) || { echo "skipped: no python3 with NiBabel, NumPy and SciPy"; exit 77; }
@@ -69,4 +69,8 @@ done
 "$tool" --quiet lh.white sphere.ply 2> ply.err
 status=$?
 test $status -eq 1 && ! test -e sphere.ply || { echo "a .ply OUTPUT was not refused"; exit 1; }
-echo "broken FreeSurfer files and a .ply OUTPUT refused, nothing written"
+"$tool" --quiet lh.white lh.sphere2 --remesh-icosphere 3 no_folder/lh.ico3 2> folder.err
+status=$?
+test $status -eq 1 && grep -q "no folder no_folder" folder.err && ! test -e lh.sphere2 ||
+  { echo "a FreeSurfer output in a missing folder was not refused before the solve"; exit 1; }
+echo "broken FreeSurfer files, a .ply OUTPUT and a missing folder refused, nothing written"
