@@ -34,14 +34,20 @@ struct Surface
 
 enum class File_kind { NOT_FREESURFER, TRIANGLES, QUADRANGLES };
 
-// The kind of `path` by its magic number, whatever its name (FreeSurfer's have no extension).
+// The kind of `path` by its magic number, whatever its name (FreeSurfer's have no extension):
+// 0xFFFFFE triangles, 0xFFFFFF and 0xFFFFFD the old and new quadrangle formats.
 inline File_kind file_kind(const std::string& path)
 {
   std::ifstream in(path, std::ios::binary);
   unsigned char magic[3] = {0, 0, 0};
   if(!in.read(reinterpret_cast<char*>(magic), 3) || magic[0] != 0xFF || magic[1] != 0xFF)
     return File_kind::NOT_FREESURFER;
-  return magic[2] == 0xFE ? File_kind::TRIANGLES : magic[2] == 0xFF ? File_kind::QUADRANGLES : File_kind::NOT_FREESURFER;
+  switch(magic[2]) {
+  case 0xFE: return File_kind::TRIANGLES;
+  case 0xFF:
+  case 0xFD: return File_kind::QUADRANGLES;
+  default: return File_kind::NOT_FREESURFER;
+  }
 }
 
 namespace detail {

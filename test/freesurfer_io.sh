@@ -60,7 +60,8 @@ EOF
 
 head -c 200 lh.white > lh.truncated
 printf '\xff\xff\xff' > lh.quadrangles
-for broken in lh.truncated lh.quadrangles; do
+printf '\xff\xff\xfd' > lh.new_quadrangles
+for broken in lh.truncated lh.quadrangles lh.new_quadrangles; do
   "$tool" --quiet $broken broken.off 2> broken.err
   status=$?
   cat broken.err
