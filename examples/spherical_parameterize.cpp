@@ -27,6 +27,7 @@
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/property_map.h>
 #include <CGAL/spherical_parameterize.h>
 #include <CGAL/Spherical_parameterization/Sphere_point_location.h>
 #include <CGAL/Spherical_parameterization/geometry_image.h>
@@ -93,6 +94,8 @@ struct Options
   bool triangulate = false;
   Soup_repairs repairs;
   bool quiet = false;
+  bool freesurfer_input = false;  // INPUT is a FreeSurfer triangle surface
+  std::string freesurfer_tags;    // what follows its faces, for the FreeSurfer outputs
 
   // Uses of the map, each off unless its output path is set.
   int icosphere_level = 0;
@@ -242,6 +245,7 @@ Options parse_options(int argc, char** argv)
   if(o.max_iterations <= 0) fail("--max-iterations must be positive");
   if(!o.landmarks.empty() && o.map_output.empty()) fail("--landmarks goes with --map-to");
   if(!(o.time_limit >= 0)) fail("--time-limit must be non-negative");
+  o.freesurfer_input = freesurfer::file_kind(o.input) == freesurfer::File_kind::TRIANGLES;
   return o;
 }
 
@@ -312,15 +316,16 @@ bool build_face_by_face(const std::vector<Point>& points, const std::vector<std:
   return true;
 }
 
-// The points and faces of a FreeSurfer triangle surface, as a soup.
+// The points and faces of a FreeSurfer triangle surface, as a soup, and its tags.
 void read_freesurfer_soup(const std::string& path, std::vector<Point>& points,
-                          std::vector<std::vector<std::size_t>>& polygons)
+                          std::vector<std::vector<std::size_t>>& polygons, std::string& tags)
 {
   try {
     freesurfer::Surface surface = freesurfer::read_surface(path);
     points.reserve(surface.points.size());
     for(const auto& p : surface.points) points.emplace_back(p[0], p[1], p[2]);
     polygons = std::move(surface.triangles);
+    tags = std::move(surface.tags);
   } catch(const std::exception& e) {
     fail("cannot read " + path + ": " + e.what());
   }
@@ -329,8 +334,9 @@ void read_freesurfer_soup(const std::string& path, std::vector<Point>& points,
 }
 
 // Reads a polygon mesh; a file that reads as a polygon soup but not as a mesh is named as such,
-// unless the `repairs` asked for make it one.
-Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {})
+// unless the `repairs` asked for make it one. A FreeSurfer surface's tags go to
+// `freesurfer_tags` if given.
+Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {}, std::string* freesurfer_tags = nullptr)
 {
   if(!std::filesystem::exists(path)) fail("cannot open " + path + ": no such file");
   Mesh mesh;
@@ -341,7 +347,10 @@ Mesh read_mesh(const std::string& path, const Soup_repairs& repairs = {})
     fail("cannot read " + path + ": FreeSurfer's quadrangle format is not read (write the surface as triangles, "
          "as mris_convert does)");
   if(kind == freesurfer::File_kind::TRIANGLES) {
-    read_freesurfer_soup(path, points, polygons);
+    std::string tags;
+    read_freesurfer_soup(path, points, polygons, tags);
+    if(freesurfer_tags)
+      *freesurfer_tags = std::move(tags);
   } else {
     const std::string ext = extension(path);
     if(ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl")
@@ -535,8 +544,7 @@ bool same_file(const std::string& a, const std::string& b) { return comparable_p
 bool writes_freesurfer(const Options& o, const std::string& path)
 {
   const std::string ext = extension(path);
-  return ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl" &&
-         freesurfer::file_kind(o.input) == freesurfer::File_kind::TRIANGLES;
+  return o.freesurfer_input && ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl";
 }
 
 // Every output is checked before the solve, so that a wrong path costs no solve and leaves no
@@ -564,16 +572,12 @@ void check_output_paths(const Options& o)
         fail("cannot write " + outputs[i] + " twice");
   }
 }
-// A triangle mesh as a FreeSurfer surface, with the input's tags (its volume geometry: the
-// outputs are in the input's space, or on a sphere centred in it).
-void write_freesurfer(const Options& o, const Mesh& mesh, const std::string& path)
+// The faces of `mesh` with `points`, one per vertex, as a FreeSurfer surface with the input's
+// tags (its volume geometry: the outputs are in the input's space, or on a sphere centred in
+// it).
+void write_freesurfer(const Options& o, const Mesh& mesh, const std::vector<std::array<double, 3>>& points,
+                      const std::string& path)
 {
-  std::vector<std::array<double, 3>> points;
-  points.reserve(mesh.number_of_vertices());
-  for(auto v : mesh.vertices()) {
-    const Point& p = mesh.point(v);
-    points.push_back({p.x(), p.y(), p.z()});
-  }
   std::vector<std::array<std::size_t, 3>> triangles;
   triangles.reserve(mesh.number_of_faces());
   for(auto f : mesh.faces()) {
@@ -582,19 +586,22 @@ void write_freesurfer(const Options& o, const Mesh& mesh, const std::string& pat
     for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) t[k++] = std::size_t(v);
     triangles.push_back(t);
   }
-  const std::string tags = freesurfer::read_surface(o.input).tags;
   write_stream(path, std::ios::binary, [&](std::ostream& out) {
-    return freesurfer::write_surface(out, points, triangles, tags, "spherical_parameterize");
+    return freesurfer::write_surface(out, points, triangles, o.freesurfer_tags, "spherical_parameterize");
   });
 }
 
 // A mesh output, as FreeSurfer's format or by its extension (`writes_freesurfer()`).
 void write_surface(const Options& o, const Mesh& mesh, const std::string& path)
 {
-  if(writes_freesurfer(o, path))
-    write_freesurfer(o, mesh, path);
-  else
+  if(!writes_freesurfer(o, path)) {
     write_mesh(mesh, path);
+    return;
+  }
+  std::vector<std::array<double, 3>> points;
+  points.reserve(mesh.number_of_vertices());
+  for(auto v : mesh.vertices()) points.push_back({mesh.point(v).x(), mesh.point(v).y(), mesh.point(v).z()});
+  write_freesurfer(o, mesh, points, path);
 }
 
 // The energy of the options: the balanced energy at the knob, unless weights are given.
@@ -769,15 +776,19 @@ void write_textured_obj(const Options& o, const Mesh& mesh, const Sphere_map& sp
 void write_freesurfer_sphere(const Options& o, const Mesh& mesh, const Sphere_map& sphere,
                              const SP::Distortion_report& exact)
 {
-  Mesh scaled = mesh, rounded = mesh;
+  std::vector<std::array<double, 3>> scaled;
+  std::vector<Point> rounded;  // the map as the file has it, back on the unit sphere
+  scaled.reserve(mesh.number_of_vertices());
+  rounded.reserve(mesh.number_of_vertices());
   for(auto v : mesh.vertices()) {
-    const Point p = CGAL::ORIGIN + freesurfer_sphere_radius * (sphere[v] - CGAL::ORIGIN);
-    scaled.point(v) = p;
-    rounded.point(v) = Point(float(p.x()) / freesurfer_sphere_radius, float(p.y()) / freesurfer_sphere_radius,
-                             float(p.z()) / freesurfer_sphere_radius);
+    const Point& p = sphere[v];
+    scaled.push_back({freesurfer_sphere_radius * p.x(), freesurfer_sphere_radius * p.y(), freesurfer_sphere_radius * p.z()});
+    const auto& q = scaled.back();
+    rounded.emplace_back(float(q[0]) / freesurfer_sphere_radius, float(q[1]) / freesurfer_sphere_radius,
+                         float(q[2]) / freesurfer_sphere_radius);
   }
-  write_freesurfer(o, scaled, o.output);
-  const SP::Distortion_report r = SP::measure_distortion(mesh, rounded.points());
+  write_freesurfer(o, mesh, scaled, o.output);
+  const SP::Distortion_report r = SP::measure_distortion(mesh, CGAL::make_property_map(rounded));
   const std::size_t lost = r.flipped + r.degenerate, had = exact.flipped + exact.degenerate;
   if(lost > had)
     std::cerr << "spherical_parameterize: warning: rounded to float32 for " << o.output << ", " << lost - had
@@ -811,9 +822,9 @@ int main(int argc, char** argv)
   // This program owns its process, and tunes it for CHOLMOD (tools/process_tuning.h): its
   // OpenMP regions inline, OpenBLAS one thread short of the cores.
   process_tuning::enable();
-  const Options o = parse_options(argc, argv);
+  Options o = parse_options(argc, argv);
   check_output_paths(o);
-  Mesh mesh = read_mesh(o.input, o.repairs);
+  Mesh mesh = read_mesh(o.input, o.repairs, &o.freesurfer_tags);
   if(o.triangulate && !CGAL::is_triangle_mesh(mesh))
     PMP::triangulate_faces(mesh);
   Other_surface other;
