@@ -103,7 +103,8 @@ void usage(const char* program)
                "figure with fingers, on a grid of N cubes a side, or the sphere of squared radius R\n"
                "through points of the integer grid (clusters of near-duplicate vertices).\n"
                "A MESH shape:spikesN is a ball with N spikes two radii long and 0.04 radian wide, like\n"
-               "a sea urchin (82k faces).\n";
+               "a sea urchin (82k faces); shape:whiteL and shape:pialL are brain surfaces, thin folds\n"
+               "on a core or narrow grooves in a shell, over the icosphere of level L (7: 328k faces).\n";
 }
 
 std::vector<std::string> split(const std::string& s, char separator)
@@ -527,7 +528,7 @@ struct Mesh_input
 
 /// A MESH starting with one of these is built in code (synthetic_shapes.h): `tube:capsule150`,
 /// `tube:helix4`, `tube:cylinder2000`, `iso:metaballs130`, `iso:starfish100`, `iso:lattice150`,
-/// `shape:spikes150` (`shape:` takes any of its names).
+/// `shape:spikes150`, `shape:white7` (`shape:` takes any of its names).
 const std::array<std::string, 3> synthetic_prefixes{"tube:", "iso:", "shape:"};
 
 /// The length of `file`'s prefix of a shape built in code, 0 if it is a file.

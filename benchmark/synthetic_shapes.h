@@ -371,6 +371,18 @@ CGAL::Surface_mesh<Point> lattice_sphere(double squared_radius)
   return marching_tetrahedra<Point>(field, 2 * half, Vec{-double(half), -double(half), -double(half)}, 1.0);
 }
 
+/// `count` unit vectors spread evenly over the sphere (a Fibonacci lattice).
+inline std::vector<Vec> fibonacci_directions(int count)
+{
+  const double golden_angle = std::acos(-1.0) * (3 - std::sqrt(5.0));
+  std::vector<Vec> directions;
+  for(int i = 0; i < count; ++i) {
+    const double z = 1 - (2 * i + 1.0) / count, r = std::sqrt(1 - z * z);
+    directions.push_back({r * std::cos(golden_angle * i), r * std::sin(golden_angle * i), z});
+  }
+  return directions;
+}
+
 /// A ball covered with `count` long thin spikes, like a sea urchin: the geodesic icosphere
 /// of level 6 (82k faces, `make_icosphere()`) moved out radially by a Gaussian bump two radii
 /// high and 0.04 radian wide around each of `count` directions spread evenly (a Fibonacci
@@ -379,12 +391,8 @@ CGAL::Surface_mesh<Point> lattice_sphere(double squared_radius)
 template <class Point>
 CGAL::Surface_mesh<Point> spikes(int count)
 {
-  const double pi = std::acos(-1.0), golden_angle = pi * (3 - std::sqrt(5.0)), height = 2, width = 0.04;
-  std::vector<Vec> directions;
-  for(int i = 0; i < count; ++i) {
-    const double z = 1 - (2 * i + 1.0) / count, r = std::sqrt(1 - z * z);
-    directions.push_back({r * std::cos(golden_angle * i), r * std::sin(golden_angle * i), z});
-  }
+  const double height = 2, width = 0.04;
+  const std::vector<Vec> directions = fibonacci_directions(count);
   const CGAL::Spherical_parameterization::Icosphere sphere = CGAL::Spherical_parameterization::make_icosphere(6);
   CGAL::Surface_mesh<Point> mesh;
   using Vertex = typename CGAL::Surface_mesh<Point>::Vertex_index;
@@ -403,14 +411,87 @@ CGAL::Surface_mesh<Point> spikes(int count)
   return mesh;
 }
 
+/// A brain surface as a segmentation of the cortex gives it, at the size of one hemisphere's
+/// (`level` 7: 328k faces): an ellipsoidal core (semi-axes 0.69, 0.55, 0.55) with folds 0.3
+/// high along a curve network, the zero set of a sum of 24 plane waves on the directions
+/// (15 to 20 folds around the core, as many as a hemisphere's gyri). `white`: thin folds 0.05
+/// wide, the gyri of a white matter surface (2.4 times the area of the convex hull); else
+/// narrow grooves 0.04 wide cut into the full shell, the sulci of a pial surface (2.5). A radial
+/// graph over the icosphere of that level, hence star-shaped and genus 0; its radius is
+/// smoothed over the sphere (an angular scale of about 0.03), since the fold profile leaves
+/// pits and cracks one vertex wide where two folds nearly meet, which no resampling reaches.
+template <class Point>
+CGAL::Surface_mesh<Point> brain(int level, bool white)
+{
+  const double pi = std::acos(-1.0), golden_ratio = (1 + std::sqrt(5.0)) / 2;
+  const double core = 0.55, height = 0.3, stretch_x = 1.25, frequency = 14;
+  const double half_width = (white ? 0.025 : 0.02) / core;  // angular
+  const std::vector<Vec> waves = fibonacci_directions(24);
+  // The folds' mid-curves are the zero set of `wave_sum`; the angular distance to it is
+  // about |g| / |tangential gradient of g|.
+  auto angular_distance_to_fold = [&](const Vec& d) {
+    double g = 0;
+    Vec gradient{0, 0, 0};
+    for(std::size_t k = 0; k < waves.size(); ++k) {
+      const double phase = 2 * pi * std::fmod(double(k) * golden_ratio, 1.0);
+      const double argument = frequency * dot(waves[k], d) + phase;
+      g += std::sin(argument);
+      for(int i = 0; i < 3; ++i)
+        gradient[i] += frequency * std::cos(argument) * waves[k][i];
+    }
+    const double radial = dot(gradient, d);
+    for(int i = 0; i < 3; ++i)
+      gradient[i] -= radial * d[i];
+    return std::abs(g) / (std::sqrt(dot(gradient, gradient)) + 1e-12);
+  };
+  auto radius = [&](const Vec& d) {
+    const double fold = 1 / (1 + std::exp(-(half_width - angular_distance_to_fold(d)) / (0.25 * half_width)));
+    return core + height * (white ? fold : 1 - fold);
+  };
+  const CGAL::Spherical_parameterization::Icosphere sphere = CGAL::Spherical_parameterization::make_icosphere(level);
+  const std::size_t n = sphere.points.size();
+  std::vector<double> r(n);
+  for(std::size_t v = 0; v < n; ++v)
+    r[v] = radius(Vec{sphere.points[v].x(), sphere.points[v].y(), sphere.points[v].z()});
+  std::vector<std::vector<int>> neighbours(n);
+  for(const std::array<int, 3>& f : sphere.faces)
+    for(int i = 0; i < 3; ++i)
+      neighbours[f[i]].push_back(f[(i + 1) % 3]);  // each neighbour once: it follows in one of the edge's two faces
+  // Halving steps towards the neighbours' mean; the passes grow as the edges shrink, so the
+  // angular scale smoothed over does not depend on the level.
+  const int passes = std::max(1, int(std::lround(10 * std::pow(4.0, level - 7))));
+  for(int pass = 0; pass < passes; ++pass) {
+    std::vector<double> next(n);
+    for(std::size_t v = 0; v < n; ++v) {
+      double sum = 0;
+      for(int u : neighbours[v])
+        sum += r[u];
+      next[v] = 0.5 * r[v] + 0.5 * sum / double(neighbours[v].size());
+    }
+    r.swap(next);
+  }
+  CGAL::Surface_mesh<Point> mesh;
+  using Vertex = typename CGAL::Surface_mesh<Point>::Vertex_index;
+  std::vector<Vertex> vertex;
+  for(std::size_t v = 0; v < n; ++v) {
+    const Eigen::Vector3d& p = sphere.points[v];
+    vertex.push_back(mesh.add_vertex(Point(stretch_x * r[v] * p.x(), r[v] * p.y(), r[v] * p.z())));
+  }
+  for(const std::array<int, 3>& f : sphere.faces)
+    mesh.add_face(vertex[f[0]], vertex[f[1]], vertex[f[2]]);
+  return mesh;
+}
+
 /// The shape named `capsuleL`, `helixT`, `cylinderN`, `spikesN`, `metaballsN`, `starfishN`,
-/// `cortexN`, `foldedN`, `figureN` or `latticeR` (positive numbers: length, turns, vertices
-/// around, spikes, grid resolution, squared radius), or nothing.
+/// `cortexN`, `foldedN`, `figureN`, `latticeR`, `whiteL` or `pialL` (positive numbers: length,
+/// turns, vertices around, spikes, grid resolution, squared radius, icosphere level), or
+/// nothing.
 template <class Point>
 std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
 {
   for(const std::string kind :
-      {"capsule", "helix", "cylinder", "spikes", "metaballs", "starfish", "cortex", "folded", "figure", "lattice"}) {
+      {"capsule", "helix", "cylinder", "spikes", "metaballs", "starfish", "cortex", "folded", "figure", "lattice",
+       "white", "pial"}) {
     if(name.compare(0, kind.size(), kind) != 0)
       continue;
     const std::string number = name.substr(kind.size());
@@ -422,6 +503,9 @@ std::optional<CGAL::Surface_mesh<Point>> by_name(const std::string& name)
     if(kind == "helix") return helix<Point>(value);
     if(kind == "cylinder") return value >= 3 ? std::optional(cad_cylinder<Point>(int(value))) : std::nullopt;
     if(kind == "spikes") return value <= 1000 ? std::optional(spikes<Point>(int(value))) : std::nullopt;
+    if(kind == "white" || kind == "pial")
+      return value <= 8 && value == std::floor(value) ? std::optional(brain<Point>(int(value), kind == "white"))
+                                                       : std::nullopt;
     if(value > 400) return std::nullopt;  // a grid of 400^3 points is already 512 MB
     if(kind == "metaballs") return metaballs<Point>(int(value));
     if(kind == "starfish") return starfish<Point>(int(value));
