@@ -82,10 +82,12 @@ tubes_corpus=(tube:capsule10 tube:capsule40 tube:capsule150 tube:helix1 tube:hel
 # near-coincident vertices where the surface passes close to a grid point, tiny faces and
 # needles around them (see synthetic_shapes.h); the starfish's thin arms are protrusions too,
 # the cortex's narrow creases a brain-like surface, the folded cortex's deeper, leaning folds
-# one that is not star-shaped. 17k to 252k faces.
+# one that is not star-shaped. 17k to 252k faces. With them, two brain surfaces as
+# segmentations give them after smoothing, at a hemisphere's size (328k faces, no clusters):
+# the thin gyri of a white matter surface and the narrow sulci of a pial one.
 isosurfaces_corpus=(iso:lattice150 iso:lattice300 iso:metaballs60 iso:metaballs100 iso:metaballs130 iso:metaballs180
                     iso:starfish60 iso:starfish100 iso:starfish150 iso:cortex60 iso:cortex100 iso:folded80
-                    iso:folded110)
+                    iso:folded110 shape:white7 shape:pial7)
 repeats=""  # the benchmark's default: 3, or 1 above 200k faces
 if [ "$large" = 1 ]; then
   corpus=("${large_corpus[@]}")
