@@ -1,7 +1,7 @@
 // Every closed genus-0 mesh of CGAL's data package from 2k to 35k faces, and shapes of the
 // classes that held-out inputs come in (a long tube, arms, isosurfaces with clusters of
-// near-duplicate vertices, flat-folded fans or brain-like folds, built by the benchmark's
-// synthetic_shapes.h), gets a valid map with the default settings, checked independently by
+// near-duplicate vertices, flat-folded fans or brain-like folds, a brain's gyri and sulci,
+// built by the benchmark's synthetic_shapes.h), gets a valid map with the default settings, checked independently by
 // measure_distortion, that keeps the whole surface: no face's area share under 1e-3 of its
 // input share, and the surface resampled through the map on the icosphere of level 6 within
 // 0.2% of the bounding box's diagonal of the input's vertices and face centroids on average,
