@@ -383,6 +383,46 @@ inline std::vector<Vec> fibonacci_directions(int count)
   return directions;
 }
 
+/// The icosphere `sphere` with its point `i` moved to radius `radii[i]`, then stretched
+/// `stretch_x` times along x.
+template <class Point>
+CGAL::Surface_mesh<Point> radial_graph(const CGAL::Spherical_parameterization::Icosphere& sphere,
+                                       const std::vector<double>& radii, double stretch_x)
+{
+  CGAL::Surface_mesh<Point> mesh;
+  using Vertex = typename CGAL::Surface_mesh<Point>::Vertex_index;
+  std::vector<Vertex> vertex;
+  for(std::size_t i = 0; i < sphere.points.size(); ++i) {
+    const Eigen::Vector3d& p = sphere.points[i];
+    vertex.push_back(mesh.add_vertex(Point(stretch_x * radii[i] * p.x(), radii[i] * p.y(), radii[i] * p.z())));
+  }
+  for(const std::array<int, 3>& f : sphere.faces)
+    mesh.add_face(vertex[f[0]], vertex[f[1]], vertex[f[2]]);
+  return mesh;
+}
+
+/// `values`, one per point of `sphere`, after `passes` steps halfway towards the mean of each
+/// point's neighbours.
+inline std::vector<double> smoothed_over_sphere(const CGAL::Spherical_parameterization::Icosphere& sphere,
+                                                std::vector<double> values, int passes)
+{
+  std::vector<std::vector<int>> neighbours(values.size());
+  for(const std::array<int, 3>& f : sphere.faces)
+    for(int i = 0; i < 3; ++i)
+      neighbours[f[i]].push_back(f[(i + 1) % 3]);  // each neighbour once: it follows in one of the edge's two faces
+  for(int pass = 0; pass < passes; ++pass) {
+    std::vector<double> next(values.size());
+    for(std::size_t v = 0; v < values.size(); ++v) {
+      double sum = 0;
+      for(int u : neighbours[v])
+        sum += values[u];
+      next[v] = 0.5 * values[v] + 0.5 * sum / double(neighbours[v].size());
+    }
+    values.swap(next);
+  }
+  return values;
+}
+
 /// A ball covered with `count` long thin spikes, like a sea urchin: the geodesic icosphere
 /// of level 6 (82k faces, `make_icosphere()`) moved out radially by a Gaussian bump two radii
 /// high and 0.04 radian wide around each of `count` directions spread evenly (a Fibonacci
@@ -394,9 +434,7 @@ CGAL::Surface_mesh<Point> spikes(int count)
   const double height = 2, width = 0.04;
   const std::vector<Vec> directions = fibonacci_directions(count);
   const CGAL::Spherical_parameterization::Icosphere sphere = CGAL::Spherical_parameterization::make_icosphere(6);
-  CGAL::Surface_mesh<Point> mesh;
-  using Vertex = typename CGAL::Surface_mesh<Point>::Vertex_index;
-  std::vector<Vertex> vertex;
+  std::vector<double> radii;
   for(const Eigen::Vector3d& point : sphere.points) {
     const Vec p{point.x(), point.y(), point.z()};
     double radius = 1;
@@ -404,11 +442,9 @@ CGAL::Surface_mesh<Point> spikes(int count)
       const double angle = std::acos(std::clamp(dot(p, d), -1.0, 1.0)) / width;
       radius += height * std::exp(-angle * angle);
     }
-    vertex.push_back(mesh.add_vertex(Point(radius * p[0], radius * p[1], radius * p[2])));
+    radii.push_back(radius);
   }
-  for(const std::array<int, 3>& f : sphere.faces)
-    mesh.add_face(vertex[f[0]], vertex[f[1]], vertex[f[2]]);
-  return mesh;
+  return radial_graph<Point>(sphere, radii, 1);
 }
 
 /// A brain surface as a segmentation of the cortex gives it, at the size of one hemisphere's
@@ -427,8 +463,8 @@ CGAL::Surface_mesh<Point> brain(int level, bool white)
   const double core = 0.55, height = 0.3, stretch_x = 1.25, frequency = 14;
   const double half_width = (white ? 0.025 : 0.02) / core;  // angular
   const std::vector<Vec> waves = fibonacci_directions(24);
-  // The folds' mid-curves are the zero set of `wave_sum`; the angular distance to it is
-  // about |g| / |tangential gradient of g|.
+  // The folds' mid-curves are the zero set of g, the waves' sum; the angular distance to it
+  // is about |g| / |g's tangential gradient|.
   auto angular_distance_to_fold = [&](const Vec& d) {
     double g = 0;
     Vec gradient{0, 0, 0};
@@ -449,37 +485,13 @@ CGAL::Surface_mesh<Point> brain(int level, bool white)
     return core + height * (white ? fold : 1 - fold);
   };
   const CGAL::Spherical_parameterization::Icosphere sphere = CGAL::Spherical_parameterization::make_icosphere(level);
-  const std::size_t n = sphere.points.size();
-  std::vector<double> r(n);
-  for(std::size_t v = 0; v < n; ++v)
-    r[v] = radius(Vec{sphere.points[v].x(), sphere.points[v].y(), sphere.points[v].z()});
-  std::vector<std::vector<int>> neighbours(n);
-  for(const std::array<int, 3>& f : sphere.faces)
-    for(int i = 0; i < 3; ++i)
-      neighbours[f[i]].push_back(f[(i + 1) % 3]);  // each neighbour once: it follows in one of the edge's two faces
-  // Halving steps towards the neighbours' mean; the passes grow as the edges shrink, so the
-  // angular scale smoothed over does not depend on the level.
+  std::vector<double> radii;
+  for(const Eigen::Vector3d& p : sphere.points)
+    radii.push_back(radius(Vec{p.x(), p.y(), p.z()}));
+  // The passes grow as the edges shrink, so that the angular scale smoothed over does not
+  // depend on the level.
   const int passes = std::max(1, int(std::lround(10 * std::pow(4.0, level - 7))));
-  for(int pass = 0; pass < passes; ++pass) {
-    std::vector<double> next(n);
-    for(std::size_t v = 0; v < n; ++v) {
-      double sum = 0;
-      for(int u : neighbours[v])
-        sum += r[u];
-      next[v] = 0.5 * r[v] + 0.5 * sum / double(neighbours[v].size());
-    }
-    r.swap(next);
-  }
-  CGAL::Surface_mesh<Point> mesh;
-  using Vertex = typename CGAL::Surface_mesh<Point>::Vertex_index;
-  std::vector<Vertex> vertex;
-  for(std::size_t v = 0; v < n; ++v) {
-    const Eigen::Vector3d& p = sphere.points[v];
-    vertex.push_back(mesh.add_vertex(Point(stretch_x * r[v] * p.x(), r[v] * p.y(), r[v] * p.z())));
-  }
-  for(const std::array<int, 3>& f : sphere.faces)
-    mesh.add_face(vertex[f[0]], vertex[f[1]], vertex[f[2]]);
-  return mesh;
+  return radial_graph<Point>(sphere, smoothed_over_sphere(sphere, std::move(radii), passes), stretch_x);
 }
 
 /// The shape named `capsuleL`, `helixT`, `cylinderN`, `spikesN`, `metaballsN`, `starfishN`,
