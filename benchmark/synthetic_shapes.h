@@ -463,14 +463,16 @@ CGAL::Surface_mesh<Point> brain(int level, bool white)
   const double core = 0.55, height = 0.3, stretch_x = 1.25, frequency = 14;
   const double half_width = (white ? 0.025 : 0.02) / core;  // angular
   const std::vector<Vec> waves = fibonacci_directions(24);
+  std::vector<double> phases;
+  for(std::size_t k = 0; k < waves.size(); ++k)
+    phases.push_back(2 * pi * std::fmod(double(k) * golden_ratio, 1.0));
   // The folds' mid-curves are the zero set of g, the waves' sum; the angular distance to it
   // is about |g| / |g's tangential gradient|.
   auto angular_distance_to_fold = [&](const Vec& d) {
     double g = 0;
     Vec gradient{0, 0, 0};
     for(std::size_t k = 0; k < waves.size(); ++k) {
-      const double phase = 2 * pi * std::fmod(double(k) * golden_ratio, 1.0);
-      const double argument = frequency * dot(waves[k], d) + phase;
+      const double argument = frequency * dot(waves[k], d) + phases[k];
       g += std::sin(argument);
       for(int i = 0; i < 3; ++i)
         gradient[i] += frequency * std::cos(argument) * waves[k][i];
