@@ -3,8 +3,8 @@
 //
 // Tests of the per-face building blocks, without any mesh: the energies and their exact
 // derivatives (Triangle_jet), the d_min correction of Friedel et al., the Triangle_jet chain
-// rules, the fold-free step bound, the tangent bases and the positive semi-definite
-// projection (with its small eigen solver) of the Newton solver.
+// rules, the fold-free step bound, the tangent bases, the positive semi-definite
+// projection (with its small eigen solver) and the stopping rules of the Newton solver.
 // Usage: test_energies            (prints PASS/FAIL per check, then "N passed, M failed")
 
 #include <CGAL/Spherical_parameterization/Area_distortion_energy.h>
@@ -27,6 +27,7 @@
 #include <CGAL/Spherical_parameterization/internal/energies/Untangling_energy.h>
 #include <CGAL/Spherical_parameterization/internal/newton/project_psd.h>
 #include <CGAL/Spherical_parameterization/internal/newton/step_bound.h>
+#include <CGAL/Spherical_parameterization/internal/newton/stopping_rules.h>
 #include <CGAL/Spherical_parameterization/internal/newton/tangent_basis.h>
 
 #include "test_support.h"
@@ -981,6 +982,27 @@ void test_project_to_psd_with_invariant_directions()
          worst <= 1e-12, "rel. err. " + str(worst));
 }
 
+// The stopping rules' extrapolations of Newton's decrement: exact on the sequences they
+// model (quadratic d_next = C d^2, linear d_next = r d), and no prediction (the decrement
+// itself, which never stops earlier than the decrement would) when the decrement grew.
+void test_decrement_predictions()
+{
+  double quadratic = 0, linear = 0;
+  for(double c : {0.5, 3.0, 40.0}) {
+    const double d0 = 1e-2 / c, d1 = c * d0 * d0, d2 = c * d1 * d1;
+    quadratic = std::max(quadratic, std::abs(SP::internal::predicted_decrement(d0, d1) - d2) / d2);
+  }
+  for(double r : {0.05, 0.3, 0.9}) {
+    const double d0 = 1e-3, d1 = r * d0, d2 = r * d1;
+    linear = std::max(linear, std::abs(SP::internal::linearly_predicted_decrement(d0, d1) - d2) / d2);
+  }
+  report("predicted_decrement is exact on a quadratic sequence (rel 1e-14)", quadratic <= 1e-14, "rel. err. " + str(quadratic));
+  report("linearly_predicted_decrement is exact on a geometric sequence (rel 1e-14)", linear <= 1e-14, "rel. err. " + str(linear));
+  report("no prediction below a decrement that grew or had no predecessor",
+         SP::internal::predicted_decrement(1e-4, 2e-4) == 2e-4 && SP::internal::linearly_predicted_decrement(1e-4, 2e-4) == 2e-4 &&
+           SP::internal::linearly_predicted_decrement(0, 2e-4) == 2e-4);
+}
+
 int main()
 {
   rng.seed(20260501);
@@ -997,6 +1019,7 @@ int main()
   test_symmetric_eigen();
   test_project_to_psd();
   test_project_to_psd_with_invariant_directions();
+  test_decrement_predictions();
   std::cout << passed << " passed, " << failed << " failed" << std::endl;
   return failed == 0 ? 0 : 1;
 }

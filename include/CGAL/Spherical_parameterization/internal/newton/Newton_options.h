@@ -75,8 +75,9 @@ struct Newton_options
   /// boost of the whole map (`boost_step()`), the directions in which the energies of
   /// conformal type are nearly flat.
   bool boost_search = false;
-  /// Stop when the next decrement, predicted from the last two, is far below the tolerance
-  /// (`predicted_decrement()`): saves the factorization that would only confirm convergence.
+  /// Stop when the next decrement, predicted from the last two, is below the tolerance
+  /// (`predicted_decrement()` far below it, `linearly_predicted_decrement()` below it from a
+  /// decrement close to it): saves the factorization that would only confirm convergence.
   /// For the input level only: a coarser level stopped one iteration early hands the next
   /// level another start, and its path changes for no gain.
   bool predict_convergence = false;

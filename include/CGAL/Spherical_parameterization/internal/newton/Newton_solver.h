@@ -167,7 +167,7 @@ public:
       if(!visitor(progress(options, out.iterations, e, step.decrement, step.alpha))) { out.stop = Newton_stop::CANCELLED; break; }
       run.history.push_back(e);
       const double limit = threshold(options, e);
-      const Tail tail = tail_after(options, step, decrease, limit, run.last_full_decrement);
+      const Tail tail = tail_after(options, step, decrease, limit, run);
       // The decrement leaves the boosts out: a boost step that still gains goes on.
       if(tail.reached && options.predict_convergence && boost_gain(energy, x, e) > limit) {
         out.energy = e;
@@ -346,6 +346,7 @@ private:
     Folded_iterates folded;
     std::vector<double> history;     // energy after each iteration, for the stall tests
     double last_full_decrement = 0;  // of the last iteration if its step was a full Newton step that held its model, else 0
+    double last_long_decrement = 0;  // of the last iteration if its step was a Newton step of at least full length, else 0
     std::size_t capped_steps = 0;    // consecutive iterations whose step the fold-free cap shortened
     Boost_skipping boosts;
   };
@@ -453,26 +454,30 @@ private:
     return folded.in_a_row > options.max_folded_iterations;
   }
 
-  // A full Newton step that decreased the energy as its model predicted, with a decrement
-  // close to the tolerance, or one whose successor, predicted from the last two decrements,
-  // is far below it: the next decrement is quadratically smaller, no need to factor again to
-  // see it. With `predict_convergence`, also a step of at least Newton's length that gained
-  // under the threshold, its decrement under `quadratic_tail_margin` thresholds: the
-  // projected model's extended steps, whose decrements shrink at a linear rate, stop here
-  // rather than factor once more only to find the next decrement under the threshold.
-  // Updates `last_full_decrement`.
-  static Tail tail_after(const Newton_options& options, const Step& step, double decrease, double threshold,
-                         double& last_full_decrement)
+  // Whether an accepted step ends the minimization, saving a factorization that would only
+  // find the next decrement under the threshold:
+  // - a full Newton step that held its model, its decrement close to the threshold, or its
+  //   successor, predicted quadratically from the last two, far below it;
+  // - with `predict_convergence`, a step of at least Newton's length, its decrement under
+  //   `quadratic_tail_margin` thresholds, that gained under the threshold, or that was a
+  //   full step after another long one and whose successor, at their linear rate, is under
+  //   the threshold: the projected model's steps converge linearly. Not after an extended
+  //   step, whose decrement understates what the slide still gains.
+  // Updates the run's last decrements.
+  static Tail tail_after(const Newton_options& options, const Step& step, double decrease, double threshold, Run& run)
   {
     Tail tail;
     tail.model_held = !step.smoothing && step.alpha == 1 &&
                       std::abs(decrease - step.decrement / 2) <= model_agreement * step.decrement;
-    tail.predicted = predicted_decrement(last_full_decrement, step.decrement);
-    last_full_decrement = tail.model_held ? step.decrement : 0;
+    tail.predicted = predicted_decrement(run.last_full_decrement, step.decrement);
+    run.last_full_decrement = tail.model_held ? step.decrement : 0;
+    const bool long_step = !step.smoothing && step.alpha >= 1;
+    const double at_linear_rate = linearly_predicted_decrement(run.last_long_decrement, step.decrement);
+    run.last_long_decrement = long_step ? step.decrement : 0;
     const bool quadratic = tail.model_held && (step.decrement <= quadratic_tail_margin * threshold ||
                                                (options.predict_convergence && tail.predicted <= predicted_margin * threshold));
-    const bool linear = options.predict_convergence && !step.smoothing && step.alpha >= 1 && decrease <= threshold &&
-                        step.decrement <= quadratic_tail_margin * threshold;
+    const bool linear = options.predict_convergence && long_step && step.decrement <= quadratic_tail_margin * threshold &&
+                        (decrease <= threshold || (step.alpha == 1 && at_linear_rate <= threshold));
     tail.reached = quadratic || linear;
     return tail;
   }

@@ -65,6 +65,17 @@ inline double predicted_decrement(double previous, double decrement)
   return decrement * (decrement / previous) * (decrement / previous);
 }
 
+/// The next decrement if the last two shrank at a rate that holds, as the projected
+/// Hessian's steps do when they converge linearly: decrement^2 / previous. Without a
+/// previous long step (0), or if the decrement did not shrink, no prediction: the
+/// decrement itself.
+inline double linearly_predicted_decrement(double previous, double decrement)
+{
+  if(!(previous > decrement))
+    return decrement;
+  return decrement * (decrement / previous);
+}
+
 } // namespace internal
 } // namespace Spherical_parameterization
 } // namespace CGAL
