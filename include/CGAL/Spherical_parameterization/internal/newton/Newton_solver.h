@@ -359,6 +359,7 @@ private:
     double alpha = 1;        // the accepted length, in units of d
     bool smoothing = false;  // a block Jacobi or two-grid direction (`Newton_options::smoothing_iterations`)
     bool two_grid = false;
+    bool projected = false;  // a direction of the projected Hessian
     bool capped = false;     // the fold-free cap shortened it before the line search
   };
 
@@ -399,6 +400,7 @@ private:
       step.two_grid = smoothing_direction(energy, x, iteration == 0 ? options.coarse_correction : nullptr, step.d);
     else if(!newton_direction(energy, x, step.d))
       return false;
+    step.projected = projected_;
     step.decrement = -system_.gradient().dot(step.d);
     return true;
   }
@@ -460,9 +462,10 @@ private:
   //   successor, predicted quadratically from the last two, far below it;
   // - with `predict_convergence`, a step of at least Newton's length, its decrement under
   //   `quadratic_tail_margin` thresholds, that gained under the threshold, or that was a
-  //   full step after another long one and whose successor, at their linear rate, is under
-  //   the threshold: the projected model's steps converge linearly. Not after an extended
-  //   step, whose decrement understates what the slide still gains.
+  //   full projected step after another long one and whose successor, at their linear
+  //   rate, is under the threshold: the projected model's steps converge linearly (the
+  //   exact one's quadratically, the first rule). Not after an extended step, whose
+  //   decrement understates what the slide still gains.
   // Updates the run's last decrements.
   static Tail tail_after(const Newton_options& options, const Step& step, double decrease, double threshold, Run& run)
   {
@@ -477,7 +480,7 @@ private:
     const bool quadratic = tail.model_held && (step.decrement <= quadratic_tail_margin * threshold ||
                                                (options.predict_convergence && tail.predicted <= predicted_margin * threshold));
     const bool linear = options.predict_convergence && long_step && step.decrement <= quadratic_tail_margin * threshold &&
-                        (decrease <= threshold || (step.alpha == 1 && at_linear_rate <= threshold));
+                        (decrease <= threshold || (step.projected && step.alpha == 1 && at_linear_rate <= threshold));
     tail.reached = quadratic || linear;
     return tail;
   }
