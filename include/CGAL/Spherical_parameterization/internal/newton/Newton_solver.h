@@ -479,8 +479,10 @@ private:
     run.last_long_decrement = long_step ? step.decrement : 0;
     const bool quadratic = tail.model_held && (step.decrement <= quadratic_tail_margin * threshold ||
                                                (options.predict_convergence && tail.predicted <= predicted_margin * threshold));
-    const bool linear = options.predict_convergence && long_step && step.decrement <= quadratic_tail_margin * threshold &&
-                        (decrease <= threshold || (step.projected && step.alpha == 1 && at_linear_rate <= threshold));
+    const bool close = options.predict_convergence && long_step && step.decrement <= quadratic_tail_margin * threshold;
+    const bool gained_little = decrease <= threshold;
+    const bool next_under_threshold = step.projected && step.alpha == 1 && at_linear_rate <= threshold;
+    const bool linear = close && (gained_little || next_under_threshold);
     tail.reached = quadratic || linear;
     return tail;
   }
