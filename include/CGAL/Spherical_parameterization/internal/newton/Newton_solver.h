@@ -400,7 +400,7 @@ private:
       step.two_grid = smoothing_direction(energy, x, iteration == 0 ? options.coarse_correction : nullptr, step.d);
     else if(!newton_direction(energy, x, step.d))
       return false;
-    step.projected = projected_;
+    step.projected = !step.smoothing && projected_;  // projected_ describes the last Newton direction only
     step.decrement = -system_.gradient().dot(step.d);
     return true;
   }
