@@ -9,7 +9,9 @@
 //   benchmark [--repeats N] [--energies balanced,tutte,dirichlet,combined] [--pipeline robust|paper]
 //             [--max-seconds S] [--no-fork] [--same-input] [--json FILE] [--csv FILE] MESH...
 // A MESH ending in "@loopN" (e.g. bunny00.off@loop2) is Loop-subdivided N times after reading;
-// "@sliversN" and "@needlesN" then add N nearly degenerate faces of each kind (mesh_defects.h).
+// "@decimateN" then collapses edges until N% of them are left (a decimated scan's obtuse and
+// long faces); "@sliversN" and "@needlesN" add N nearly degenerate faces of each kind
+// (mesh_defects.h).
 // "tube:capsuleL" and "tube:helixT" are long tubes built in code (synthetic_shapes.h),
 // "tube:cylinderN" a CAD-like cylinder of needles with fan caps, and
 // "iso:metaballsN", "iso:starfishN", "iso:cortexN", "iso:foldedN" and "iso:latticeR" isosurfaces made by
@@ -22,6 +24,8 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/subdivision_method_3.h>
+#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_ratio_stop_predicate.h>
 
 #include <CGAL/spherical_parameterize.h>
 #include <CGAL/Spherical_parameterization/Balanced_energy.h>
@@ -92,8 +96,9 @@ void usage(const char* program)
                "       [--max-seconds S] [--no-fork] [--same-input] [--json FILE] [--csv FILE] MESH...\n"
                "The repeats after the first run on the input turned by fixed rotations (the rounding,\n"
                "and so the solver's path, changes); --same-input repeats the input as read.\n"
-               "A MESH path ending in @loopN is Loop-subdivided N times before timing; @sliversN and\n"
-               "@needlesN then split N faces into slivers or needles (e.g. cow.off@needles50).\n"
+               "A MESH path ending in @loopN is Loop-subdivided N times before timing; @decimateN then\n"
+               "collapses edges until N% of them are left; @sliversN and @needlesN split N faces into\n"
+               "slivers or needles (e.g. cow.off@needles50).\n"
                "A MESH tube:capsuleL or tube:helixT is built: a straight tube L radii long, or a thin\n"
                "tube coiled T times (e.g. tube:helix4, 112k faces); tube:cylinderN is a cylinder with N\n"
                "vertices on each of five rings and fan caps, as CAD tessellations make it (needles).\n"
@@ -522,6 +527,7 @@ struct Mesh_input
   std::string file;  // without them
   std::string name;  // file stem, with the suffixes
   int loops = 0;     // @loopN: Loop subdivisions
+  int decimate = 0;  // @decimateN: edges collapsed until N% are left, after subdividing
   int slivers = 0;   // @sliversN: faces split at 1e-6 above an edge's midpoint, after subdividing
   int needles = 0;   // @needlesN: faces split at 1e-6 of an edge from a corner, 1e-7 off it
 };
@@ -540,7 +546,7 @@ std::size_t synthetic_prefix(const std::string& file)
   return 0;
 }
 
-/// `MESH[@loopN][@sliversN][@needlesN]`; nothing on an unknown suffix.
+/// `MESH[@loopN][@decimateN][@sliversN][@needlesN]`; nothing on an unknown suffix.
 std::optional<Mesh_input> parse_mesh_argument(const std::string& argument)
 {
   Mesh_input in;
@@ -553,8 +559,12 @@ std::optional<Mesh_input> parse_mesh_argument(const std::string& argument)
       const std::size_t digits = suffix.find_first_of("0123456789");
       const std::string kind = suffix.substr(0, digits);
       const int count = digits == std::string::npos ? 0 : std::atoi(suffix.c_str() + digits);
-      int* field = kind == "loop" ? &in.loops : kind == "slivers" ? &in.slivers : kind == "needles" ? &in.needles : nullptr;
-      if(!field || count <= 0)
+      int* field = kind == "loop"      ? &in.loops
+                   : kind == "decimate" ? &in.decimate
+                   : kind == "slivers"  ? &in.slivers
+                   : kind == "needles"  ? &in.needles
+                                        : nullptr;
+      if(!field || count <= 0 || (field == &in.decimate && count > 100))
         return std::nullopt;
       *field = count;
     }
@@ -763,6 +773,13 @@ bool prepare_mesh(const Mesh_input& in, Mesh& mesh)
   }
   if(in.loops > 0)
     CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(in.loops));
+  if(in.decimate > 0) {
+    // CGAL's default cost and placement (Lindstrom and Turk): what a user's decimated scan
+    // looks like, obtuse and long faces where the surface is flat.
+    namespace SMS = CGAL::Surface_mesh_simplification;
+    SMS::edge_collapse(mesh, SMS::Count_ratio_stop_predicate<Mesh>(in.decimate / 100.0));
+    mesh.collect_garbage();
+  }
   std::mt19937 random(1);  // the same faces in every run
   mesh_defects::add_slivers(mesh, in.slivers, 1e-6, random);
   mesh_defects::add_needles(mesh, in.needles, 1e-6, 1e-7, random);
@@ -842,7 +859,7 @@ int main(int argc, char** argv)
   for(const std::string& argument : options.meshes) {
     const std::optional<Mesh_input> parsed = parse_mesh_argument(argument);
     if(!parsed) {
-      std::cerr << "unknown suffix in " << argument << " (@loopN, @sliversN, @needlesN)\n";
+      std::cerr << "unknown suffix in " << argument << " (@loopN, @decimateN, @sliversN, @needlesN)\n";
       failures = true;
       continue;
     }

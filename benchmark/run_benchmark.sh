@@ -2,13 +2,17 @@
 # Builds the benchmark in Release and runs it over CGAL's sample meshes; writes
 # benchmark/results/latest.csv and latest.json, then the plots (see README.md).
 #
-# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--defects] [--tubes] [--isosurfaces] [--knob] [--energies LIST]
+# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--decimated] [--defects] [--tubes] [--isosurfaces] [--knob]
+#                                   [--energies LIST]
 #                                   [--pipeline robust|paper] [--data DIR] [--build-dir DIR]
 #   --quick          only the meshes under 15k faces, 1 repeat each
 #   --full           also bunny00 Loop-subdivided once (300k faces) and twice (1.2M faces)
 #   --large          instead, 15 other meshes Loop-subdivided to 90k-260k faces, 3 repeats
 #                    (turned inputs, see benchmark/README.md), the default energy (balanced) unless --energies;
 #                    results in benchmark/results/large/
+#   --decimated      instead, 10 meshes decimated by edge collapse to 10%, 3% and 1% of their
+#                    edges (MESH@decimateN: 60 to 7.5k faces), 3 repeats, the default energy
+#                    (balanced) unless --energies; results in benchmark/results/decimated/
 #   --defects        instead, meshes with nearly degenerate faces added (MESH@sliversN,
 #                    MESH@needlesN), 1 repeat, the default energy (balanced) unless --energies; results in
 #                    benchmark/results/defects/
@@ -36,6 +40,7 @@ root="$(cd "$here/.." && pwd)"
 quick=0
 full=0
 large=0
+decimated=0
 defects=0
 tubes=0
 isosurfaces=0
@@ -49,6 +54,7 @@ while [ $# -gt 0 ]; do
     --quick) quick=1 ;;
     --full) full=1 ;;
     --large) large=1 ;;
+    --decimated) decimated=1 ;;
     --defects) defects=1 ;;
     --tubes) tubes=1 ;;
     --isosurfaces) isosurfaces=1 ;;
@@ -57,7 +63,7 @@ while [ $# -gt 0 ]; do
     --pipeline) pipeline="$2"; shift ;;
     --data) data="$2"; shift ;;
     --build-dir) build_dir="$2"; shift ;;
-    -h|--help) sed -n '2,26p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,34p' "$0"; exit 0 ;;
     *) echo "unknown option $1" >&2; exit 1 ;;
   esac
   shift
@@ -70,6 +76,12 @@ corpus=(hand blobby triceratops cow retinal homer bull camel bear fandisk_large 
 large_corpus=(cow@loop2 triceratops@loop2 bear@loop1 retinal@loop2 dino@loop2 fandisk_large@loop1 man@loop1
               hand@loop3 homer@loop2 diplodocus@loop1 bull@loop2 ellipe0.003@loop3 fandisk@loop2
               armadillo@loop1 blobby@loop3)
+# Low-poly models, as decimated scans and game assets are: obtuse and long faces, and curvature
+# concentrated on a few sharp vertices (a leg's or a horn's tip), which a resampling cuts.
+decimated_corpus=()
+for m in cow bull camel man diplodocus dino armadillo triceratops homer bunny00; do
+  decimated_corpus+=("$m@decimate10" "$m@decimate3" "$m@decimate1")
+done
 # Slivers and near-duplicate vertices (see mesh_defects.h), at corpus and held-out sizes.
 defects_corpus=(cow@needles50 triceratops@needles50 bull@slivers50 man@slivers50 cow@loop2@needles200
                 bull@loop2@slivers200 man@loop1@needles100)
@@ -92,6 +104,12 @@ repeats=""  # the benchmark's default: 3, or 1 above 200k faces
 if [ "$large" = 1 ]; then
   corpus=("${large_corpus[@]}")
   repeats=3  # the paths of the protrusion meshes follow the rounding: a median over 3
+  : "${energies:=balanced}"
+fi
+if [ "$decimated" = 1 ]; then
+  corpus=("${decimated_corpus[@]}")
+  large=1
+  repeats=3  # turned inputs: a low-poly tip's resampling error depends on the samples' orientation
   : "${energies:=balanced}"
 fi
 if [ "$defects" = 1 ]; then
@@ -186,7 +204,7 @@ binary="$build_dir/bin/benchmark"
 
 # Run.
 results="$here/results"
-if [ "$knob" = 1 ]; then results="$results/knob"; elif [ "$isosurfaces" = 1 ]; then results="$results/isosurfaces"; elif [ "$tubes" = 1 ]; then results="$results/tubes"; elif [ "$defects" = 1 ]; then results="$results/defects"; elif [ "$large" = 1 ]; then results="$results/large"; fi
+if [ "$knob" = 1 ]; then results="$results/knob"; elif [ "$isosurfaces" = 1 ]; then results="$results/isosurfaces"; elif [ "$tubes" = 1 ]; then results="$results/tubes"; elif [ "$decimated" = 1 ]; then results="$results/decimated"; elif [ "$defects" = 1 ]; then results="$results/defects"; elif [ "$large" = 1 ]; then results="$results/large"; fi
 mkdir -p "$results"
 args=(--energies "$energies" --pipeline "$pipeline" --csv "$results/latest.csv" --json "$results/latest.json")
 if [ "$quick" = 1 ]; then repeats=1; fi
