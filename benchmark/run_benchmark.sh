@@ -2,16 +2,15 @@
 # Builds the benchmark in Release and runs it over CGAL's sample meshes; writes
 # benchmark/results/latest.csv and latest.json, then the plots (see README.md).
 #
-# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--decimated] [--defects] [--tubes] [--isosurfaces] [--knob]
-#                                   [--energies LIST]
-#                                   [--pipeline robust|paper] [--data DIR] [--build-dir DIR]
+# usage: benchmark/run_benchmark.sh [--quick] [--full] [--large] [--decimated] [--defects] [--tubes] [--isosurfaces]
+#                                   [--knob] [--energies LIST] [--pipeline robust|paper] [--data DIR] [--build-dir DIR]
 #   --quick          only the meshes under 15k faces, 1 repeat each
 #   --full           also bunny00 Loop-subdivided once (300k faces) and twice (1.2M faces)
 #   --large          instead, 15 other meshes Loop-subdivided to 90k-260k faces, 3 repeats
 #                    (turned inputs, see benchmark/README.md), the default energy (balanced) unless --energies;
 #                    results in benchmark/results/large/
 #   --decimated      instead, 10 meshes decimated by edge collapse to 10%, 3% and 1% of their
-#                    edges (MESH@decimateN: 60 to 7.5k faces), 3 repeats, the default energy
+#                    edges (MESH@decimateN: 56 to 7.5k faces), 3 repeats, the default energy
 #                    (balanced) unless --energies; results in benchmark/results/decimated/
 #   --defects        instead, meshes with nearly degenerate faces added (MESH@sliversN,
 #                    MESH@needlesN), 1 repeat, the default energy (balanced) unless --energies; results in
@@ -63,7 +62,7 @@ while [ $# -gt 0 ]; do
     --pipeline) pipeline="$2"; shift ;;
     --data) data="$2"; shift ;;
     --build-dir) build_dir="$2"; shift ;;
-    -h|--help) sed -n '2,34p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,33p' "$0"; exit 0 ;;
     *) echo "unknown option $1" >&2; exit 1 ;;
   esac
   shift
