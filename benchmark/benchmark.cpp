@@ -778,7 +778,6 @@ bool prepare_mesh(const Mesh_input& in, Mesh& mesh)
     // looks like, obtuse and long faces where the surface is flat.
     namespace SMS = CGAL::Surface_mesh_simplification;
     SMS::edge_collapse(mesh, SMS::Count_ratio_stop_predicate<Mesh>(in.decimate / 100.0));
-    mesh.collect_garbage();
   }
   std::mt19937 random(1);  // the same faces in every run
   mesh_defects::add_slivers(mesh, in.slivers, 1e-6, random);
