@@ -278,10 +278,11 @@ private:
   }
 
   // After an iteration, the shifts are relaxed towards their floor: most after a full step,
-  // which says the model holds; least if the shift had to grow in this iteration, as a
-  // failure costs a whole factorization (the negative modes are global, found in the last
-  // supernode); the exact shift not at all while the exact Hessian is paused, so that it
-  // does not climb back through failed factorizations to where it was.
+  // which says the model holds; least if the shift had to grow in this iteration, as the
+  // shift just found is then near the smallest that factors, and each failure costs the
+  // factorization up to its failing column; the exact shift not at all while the exact
+  // Hessian is paused, so that it does not climb back through failed factorizations to
+  // where it was.
   void relax_shifts(bool full_step, bool smoothing)
   {
     const double relax = shift_raised_ && !smoothing ? relax_after_growth : full_step ? relax_after_full_step : relax_after_short_step;
