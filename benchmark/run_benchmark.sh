@@ -107,7 +107,7 @@ if [ "$large" = 1 ]; then
 fi
 if [ "$decimated" = 1 ]; then
   corpus=("${decimated_corpus[@]}")
-  large=1
+  large=1  # the same treatment: every mesh, none added
   repeats=3  # turned inputs: a low-poly tip's resampling error depends on the samples' orientation
   : "${energies:=balanced}"
 fi
