@@ -123,18 +123,20 @@ std::vector<std::string> split(const std::string& s, char separator)
   return parts;
 }
 
-// An energy as NAME or NAME:A or NAME:A:B, the arguments of `energy_by_name()`
-// (e.g. combined:1:30); "balanced" alone is the default energy, `balanced_energy()`.
+// An energy as NAME, NAME:A, NAME:A:B or NAME:A:B:C, the arguments of `energy_by_name()`
+// (e.g. combined:1:30, balanced:0.5:0.5:0.2); "balanced" alone is the default energy,
+// `balanced_energy()`.
 std::optional<SP::Energy_mix> energy_from_spec(const std::string& spec)
 {
   const std::vector<std::string> parts = split(spec, ':');
-  if(parts.empty() || parts.size() > 3)
+  if(parts.empty() || parts.size() > 4)
     return std::nullopt;
   if(parts.size() == 1 && parts[0] == "balanced")
     return SP::energy_by_name("balanced", 1 - SP::default_area_preservation, SP::default_area_preservation);
   const double a = parts.size() > 1 ? std::atof(parts[1].c_str()) : 1;
   const double b = parts.size() > 2 ? std::atof(parts[2].c_str()) : 1;
-  return SP::energy_by_name(parts[0], a, b);
+  const double c = parts.size() > 3 ? std::atof(parts[3].c_str()) : 0;
+  return SP::energy_by_name(parts[0], a, b, c);
 }
 
 bool parse_options(int argc, char** argv, Options& options)

@@ -293,10 +293,35 @@ void test_inverse_dirichlet_stretch()
   report("inverse Dirichlet of a flipped face is infinite", std::isinf(value(1, 1, true)));
 }
 
+// "balanced" with a third weight is the sum of its three terms, face by face; the third
+// weight belongs to "balanced" alone, and a negative or non-finite one is refused.
+void test_balanced_with_sample_spacing()
+{
+  const SP::Reference_triangle input(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.1, 0), Eigen::Vector3d(0.3, 0.8, 0));
+  const Eigen::Vector3d a(0.1, 0.2, 1), b(0.6, 0.1, 0.9), c(0.2, 0.7, 0.8);
+  const SP::Chord_triangle<double> chord(a.normalized(), b.normalized(), c.normalized());
+  auto value = [&](const auto& energy) { return energy.flat_energy(chord, energy.face_data(input)); };
+  const std::optional<SP::Energy_mix> mix = SP::energy_by_name("balanced", 0.7, 0.3, 0.2);
+  report("energy_by_name(\"balanced\", a, b, c) exists", bool(mix));
+  if(!mix)
+    return;
+  const double expected = 0.7 * value(SP::Dirichlet_energy{0, M_PI}) + 0.3 * value(SP::Area_distortion_energy()) +
+                          0.2 * value(SP::Inverse_dirichlet_energy());
+  const double error = std::abs(value(*mix) / expected - 1);
+  report("balanced with weight c adds c Inverse_dirichlet to its two terms (rel 1e-12)", error <= 1e-12,
+         "rel. err. " + str(error));
+  check_energy("Energy_mix balanced with sample spacing", *mix);
+  report("energy_by_name refuses a third weight for another energy than balanced",
+         !SP::energy_by_name("combined", 1, 1, 0.2) && !SP::energy_by_name("symmetric_dirichlet", 1, 1, 0.2));
+  report("energy_by_name refuses a negative or non-finite third weight",
+         !SP::energy_by_name("balanced", 0.5, 0.5, -0.1) && !SP::energy_by_name("balanced", 0.5, 0.5, NAN));
+}
+
 void test_energies()
 {
   test_area_distortion_minimum();
   test_inverse_dirichlet_stretch();
+  test_balanced_with_sample_spacing();
   check_energy("Tutte", SP::Tutte_energy());
   check_energy("Dirichlet", SP::Dirichlet_energy());
   check_energy("Area", SP::Area_energy());

@@ -34,9 +34,13 @@ using Energy_mix = Weighted_sum<Tutte_energy, Dirichlet_energy, Area_energy, Str
 /// "balanced" (`a` Dirichlet with exact cotangents + `b` Area_distortion:
 /// `balanced_energy(b / (a + b))` times `a + b`) or "symmetric_dirichlet" (`a` Dirichlet with
 /// exact cotangents + `b` Inverse_dirichlet: `symmetric_dirichlet_energy(b / (a + b))` times
-/// `a + b`); the two weights of "balanced" and "symmetric_dirichlet" may be 0, not both. Empty
-/// for an unknown name or a weight that is not finite and positive.
-inline std::optional<Energy_mix> energy_by_name(const std::string& name, double a = 1, double b = 1)
+/// `a + b`); the two weights of "balanced" and "symmetric_dirichlet" may be 0, not both.
+/// "balanced" also takes `c`, the weight of an added Inverse_dirichlet term, which keeps the
+/// samples of a resampling close on the surface in every direction (the sharp tips of low-poly
+/// models need it; the user manual gives the measurements); every other name takes `c = 0`.
+/// Empty for an unknown name or a weight that is not finite and positive.
+inline std::optional<Energy_mix> energy_by_name(const std::string& name, double a = 1, double b = 1,
+                                                double c = 0)
 {
   auto positive = [](double w) { return std::isfinite(w) && w > 0; };
   auto non_negative = [](double w) { return std::isfinite(w) && w >= 0; };
@@ -44,7 +48,7 @@ inline std::optional<Energy_mix> energy_by_name(const std::string& name, double 
   const bool knob = name == "balanced" || name == "symmetric_dirichlet";
   const bool valid = knob ? non_negative(a) && non_negative(b) && a + b > 0
                           : positive(a) && (name != "combined" || positive(b));
-  if(!valid)
+  if(!valid || !non_negative(c) || (c != 0 && name != "balanced"))
     return std::nullopt;
   Energy_mix::Weights w{0, 0, 0, 0, 0, 0, 0};
   if(name == "tutte") w[0] = a;
@@ -55,7 +59,7 @@ inline std::optional<Energy_mix> energy_by_name(const std::string& name, double 
   else if(name == "area_distortion") w[5] = a;
   else if(name == "inverse_dirichlet") w[6] = a;
   else if(name == "combined") { w[1] = a; w[2] = b; }
-  else if(name == "balanced") { w[1] = a; w[5] = b; }
+  else if(name == "balanced") { w[1] = a; w[5] = b; w[6] = c; }
   else if(name == "symmetric_dirichlet") { w[1] = a; w[6] = b; }
   else return std::nullopt;
   // The knobs' conformal ends take the exact cotangents, as `balanced_energy()` does.
