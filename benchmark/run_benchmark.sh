@@ -24,8 +24,9 @@
 #   --knob           instead, the balanced energy's knob t from 0 (conformal) to 1 (equal-area)
 #                    on camel, cow, man and bunny00, 1 repeat; results and the plot of angle
 #                    against area distortion (knob.png) in benchmark/results/knob/
-#   --energies LIST  comma-separated (NAME, NAME:A or NAME:A:B), default
-#                    balanced,tutte,dirichlet,combined (balanced: the default energy)
+#   --energies LIST  comma-separated (NAME, NAME:A, NAME:A:B or balanced:A:B:C, C the sample
+#                    spacing weight), default balanced,tutte,dirichlet,combined (balanced: the
+#                    default energy)
 #   --pipeline P     robust (default) or paper
 #   --data DIR       a folder holding the .off meshes; default: CGAL's data tarball
 #                    /usr/share/doc/libcgal-dev/data.tar.gz (Debian package libcgal-demo),
